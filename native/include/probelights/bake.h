@@ -1,0 +1,42 @@
+// The whole path from a probe to its lights, with timings: what the CLI, the Python module and benchmarks call.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "probelights/lights.h"
+#include "probelights/moment_table.h"
+#include "probelights/partition.h"
+#include "probelights/probe.h"
+
+namespace probelights {
+
+enum class Method { MedianCut, Variance };
+std::string toString(Method method);
+std::optional<Method> parseMethod(const std::string& name);
+
+struct BakeOptions {
+  Method method = Method::Variance;
+  int lights = 16;
+  CentroidWeight centroid = CentroidWeight::Energy;
+  WorkingResolution resolution;
+};
+
+struct BakeTimings {
+  double tablesMs = 0, partitionMs = 0, lightsMs = 0;
+};
+
+struct BakeResult {
+  std::vector<Light> lights;
+  std::vector<Rect> regions;  // every region in pixels, lit or not (they tile the image)
+  std::vector<Cut> cuts;      // in pixels, in the order they were made
+  int cellSize = 1;
+  Rgb totalRgb{};             // the probe's integral of L over the sphere
+  BakeTimings timings;
+  std::vector<std::string> notes;
+};
+
+// Throws Error for a bad request (lights < 1).
+BakeResult bake(const Probe& probe, const BakeOptions& options);
+
+}  // namespace probelights

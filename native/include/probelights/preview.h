@@ -1,0 +1,14 @@
+// A picture of a bake, like Figure 1 of Viriyothai & Debevec 2009: the tone-mapped probe, region borders and lights.
+#pragma once
+
+#include <string>
+
+#include "probelights/bake.h"
+#include "probelights/probe.h"
+
+namespace probelights {
+
+// Writes a PNG (or any format OpenImageIO writes, by extension) at most maxWidth pixels wide. Throws Error.
+void writePreview(const Probe& probe, const BakeResult& result, const std::string& path, int maxWidth = 2048);
+
+}  // namespace probelights

@@ -1,0 +1,67 @@
+#include "probelights/bake.h"
+
+#include <chrono>
+#include <memory>
+
+#include "probelights/error.h"
+#include "probelights/median_cut.h"
+#include "probelights/variance_minimization.h"
+
+namespace probelights {
+
+std::string toString(Method method) {
+  switch (method) {
+    case Method::MedianCut: return "median-cut";
+    case Method::Variance: return "variance";
+  }
+  return "?";
+}
+
+std::optional<Method> parseMethod(const std::string& name) {
+  if (name == "median-cut" || name == "mediancut" || name == "median") return Method::MedianCut;
+  if (name == "variance" || name == "variance-minimization") return Method::Variance;
+  return std::nullopt;
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+Cut toPixels(const MomentTable& table, const Cut& cut) {
+  Rect r = table.toPixels(cut.region);
+  int position = std::min(cut.position * table.cellSize(), cut.axis == Axis::X ? r.x1 : r.y1);
+  return {r, cut.axis, position};
+}
+
+}  // namespace
+
+BakeResult bake(const Probe& probe, const BakeOptions& options) {
+  if (options.lights < 1)
+    throw Error("asked for " + std::to_string(options.lights) + " lights: ask for at least 1");
+  BakeResult result;
+
+  auto t = Clock::now();
+  const MomentTable table(probe, options.resolution.cellSize(probe.width()));
+  result.timings.tablesMs = msSince(t);
+  result.cellSize = table.cellSize();
+  result.totalRgb = table.integral();
+
+  t = Clock::now();
+  std::unique_ptr<CutRule> rule;
+  if (options.method == Method::MedianCut) rule = std::make_unique<MedianCutRule>(probe.projection());
+  else rule = std::make_unique<VarianceMinimizationRule>();
+  Partition partition = partitionSphere(table, *rule, options.lights);
+  result.timings.partitionMs = msSince(t);
+
+  for (const Rect& r : partition.regions) result.regions.push_back(table.toPixels(r));
+  for (const Cut& c : partition.cuts) result.cuts.push_back(toPixels(table, c));
+  result.notes = partition.notes;
+
+  t = Clock::now();
+  result.lights = lightsFromRegions(probe, result.regions, options.centroid);
+  result.timings.lightsMs = msSince(t);
+  return result;
+}
+
+}  // namespace probelights
