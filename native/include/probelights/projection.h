@@ -18,7 +18,7 @@
 //    up +Z) but the angle from the centre direction grows linearly with the radius: theta = pi r, so
 //      d = (sin(theta) a / r, -cos(theta), sin(theta) b / r).
 //    Its area density is dOmega/dA = pi sin(pi r) / r; a pixel's solid angle is integrated by Gauss-Legendre
-//    quadrature (sub-divided on the rim), accurate to ~1e-10 relative inside the disc.
+//    quadrature, accurate to ~1e-10 relative inside the disc and ~1e-7 on the rim (sub-divided there).
 // Pixels outside the disc of a ball or angular probe have no direction and zero solid angle: they carry nothing.
 #pragma once
 

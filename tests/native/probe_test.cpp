@@ -1,0 +1,216 @@
+// Probe input: real files through OpenImageIO, caller buffers without copying, channels, bad pixels, bad inputs.
+#include "probelights/probe.h"
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+#include <limits>
+
+#include "probelights/bake.h"
+#include "probelights/error.h"
+#include "test_probes.h"
+
+namespace fs = std::filesystem;
+
+namespace probelights {
+namespace {
+
+using testing::maxRelativeDifference;
+using testing::sumRgb;
+
+std::vector<fs::path> realProbes() {
+  std::vector<fs::path> files;
+  for (const char* dir : {PROBELIGHTS_SHARED_HDRI, PROBELIGHTS_STUDIOLIGHTS}) {
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(dir, ec))
+      if (entry.path().extension() == ".exr" || entry.path().extension() == ".hdr") files.push_back(entry.path());
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+fs::path tempDir() {
+  fs::path d = fs::temp_directory_path() / ("probelights_test_" + std::to_string(::getpid()));
+  fs::create_directories(d);
+  return d;
+}
+
+std::string expectError(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    std::string m = e.what();
+    EXPECT_EQ(m.find('\n'), std::string::npos) << "error messages are one line";
+    return m;
+  }
+  ADD_FAILURE() << "expected an Error";
+  return {};
+}
+
+TEST(RealProbes, EveryProbeBakesAndConservesEnergy) {
+  auto files = realProbes();
+  if (files.empty()) GTEST_SKIP() << "no probes in ../shared/hdri or Blender's studiolights";
+  for (const auto& f : files) {
+    SCOPED_TRACE(f.string());
+    Probe probe = Probe::load(f.string());
+    Rgb integral = probe.integral();
+    for (Method m : {Method::MedianCut, Method::Variance}) {
+      BakeOptions o;
+      o.method = m;
+      o.lights = 16;
+      auto r = bake(probe, o);
+      EXPECT_EQ(r.lights.size(), 16u);
+      EXPECT_LE(maxRelativeDifference(sumRgb(r.lights), integral), 1e-6);
+      for (const Light& l : r.lights) EXPECT_NEAR(l.direction.length(), 1.0, 1e-9);
+    }
+  }
+}
+
+TEST(RealProbes, NegativeSamplesOfLossyExrAreClampedAndCounted) {
+  fs::path f = fs::path(PROBELIGHTS_SHARED_HDRI) / "pmndrs_esplanade_dwab.exr";
+  if (!fs::exists(f)) GTEST_SKIP() << f;
+  Probe probe = Probe::load(f.string());
+  EXPECT_EQ(probe.report().negativeSamples, 5054);  // as ../shared/hdri/README.md says
+  ASSERT_FALSE(probe.report().notes.empty());
+  for (int y = 0; y < probe.height(); ++y)
+    for (int x = 0; x < probe.width(); ++x)
+      for (double c : probe.radiance(x, y)) ASSERT_GE(c, 0.0);
+}
+
+TEST(Buffers, ViewIsNotCopied) {
+  std::vector<float> pixels(16 * 8 * 3, 1.0f);
+  Probe probe(ImageView{pixels.data(), 16, 8, 3}, ProjectionKind::LatLong);
+  EXPECT_EQ(probe.view().pixels, pixels.data());
+  pixels[0] = 7.0f;  // the probe sees the caller's memory
+  EXPECT_EQ(probe.radiance(0, 0)[0], 7.0);
+}
+
+TEST(Buffers, GreyAndAlphaChannels) {
+  const int W = 32, H = 16;
+  std::vector<float> grey(W * H), greyAlpha(W * H * 2), rgb(W * H * 3), rgba(W * H * 4);
+  for (int i = 0; i < W * H; ++i) {
+    float v = 0.1f + (i % 17) * 0.3f;
+    grey[i] = v;
+    greyAlpha[2 * i] = v, greyAlpha[2 * i + 1] = 0.25f;
+    for (int k = 0; k < 3; ++k) rgb[3 * i + k] = v, rgba[4 * i + k] = v;
+    rgba[4 * i + 3] = 0.5f;  // alpha must not matter
+  }
+  Probe reference(ImageView{rgb.data(), W, H, 3}, ProjectionKind::LatLong);
+  for (auto view : {ImageView{grey.data(), W, H, 1}, ImageView{greyAlpha.data(), W, H, 2},
+                    ImageView{rgba.data(), W, H, 4}}) {
+    Probe p(view, ProjectionKind::LatLong);
+    BakeOptions o;
+    o.lights = 5;
+    auto a = bake(p, o), b = bake(reference, o);
+    ASSERT_EQ(a.lights.size(), b.lights.size());
+    for (std::size_t i = 0; i < a.lights.size(); ++i) EXPECT_EQ(a.lights[i].rgb, b.lights[i].rgb);
+  }
+}
+
+TEST(Buffers, StridedView) {
+  // Every other pixel of every other row of a larger buffer, e.g. a crop of the caller's image.
+  const int W = 16, H = 8;
+  std::vector<float> big(4 * W * H * 3, 0.0f), packed(W * H * 3);
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x)
+      for (int k = 0; k < 3; ++k) {
+        float v = 1.0f + x + 10.0f * y + 100.0f * k;
+        big[(2 * y) * (2 * W * 3) + (2 * x) * 3 + k] = v;
+        packed[(y * W + x) * 3 + k] = v;
+      }
+  Probe strided(ImageView{big.data(), W, H, 3, 2 * W * 3 * 2, 6}, ProjectionKind::LatLong);
+  Probe reference(ImageView{packed.data(), W, H, 3}, ProjectionKind::LatLong);
+  EXPECT_EQ(strided.integral(), reference.integral());
+}
+
+TEST(BadPixels, NonFiniteSamplesAreAnErrorNamingHowManyAndWhere) {
+  const int W = 16, H = 8;
+  std::vector<float> pixels(W * H * 3, 1.0f);
+  pixels[(3 * W + 5) * 3 + 1] = std::numeric_limits<float>::quiet_NaN();
+  pixels[(6 * W + 2) * 3 + 0] = std::numeric_limits<float>::infinity();
+  std::string m = expectError([&] { Probe p(ImageView{pixels.data(), W, H, 3}, ProjectionKind::LatLong); });
+  EXPECT_NE(m.find("2 NaN/Inf samples"), std::string::npos) << m;
+  EXPECT_NE(m.find("(5, 3)"), std::string::npos) << m;
+
+  Probe zeroed(ImageView{pixels.data(), W, H, 3}, ProjectionKind::LatLong, NonFinitePolicy::Zero);
+  EXPECT_EQ(zeroed.report().nonFiniteSamples, 2);
+  BakeOptions o;
+  o.lights = 4;
+  auto r = bake(zeroed, o);
+  for (const Light& l : r.lights)
+    for (double c : l.rgb) EXPECT_TRUE(std::isfinite(c));
+  EXPECT_TRUE(std::isfinite(r.totalRgb[0]) && std::isfinite(r.totalRgb[1]));
+}
+
+TEST(BadInputs, OneLineErrors) {
+  fs::path dir = tempDir();
+  EXPECT_NE(expectError([&] { Probe::load((dir / "missing.exr").string()); }).find("no such file"), std::string::npos);
+  {
+    std::ofstream(dir / "garbage.exr") << "this is not an image\n";
+  }
+  expectError([&] { Probe::load((dir / "garbage.exr").string()); });
+  expectError([&] { Probe::load(dir.string()); });
+  expectError([&] { Probe p(ImageView{nullptr, 0, 0, 3}, ProjectionKind::LatLong); });
+  std::vector<float> px(3, 1.0f);
+  expectError([&] { Probe p(ImageView{px.data(), 1, 1, 0}, ProjectionKind::LatLong); });
+  fs::remove_all(dir);
+}
+
+void writeImage(const fs::path& path, int W, int H, int channels, const std::vector<float>& pixels,
+                OIIO::TypeDesc type = OIIO::TypeDesc::FLOAT) {
+  auto out = OIIO::ImageOutput::create(path.string());
+  ASSERT_TRUE(out) << path;
+  OIIO::ImageSpec spec(W, H, channels, type);
+  ASSERT_TRUE(out->open(path.string(), spec));
+  ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
+  out->close();
+}
+
+TEST(Files, FormatsOpenImageIOReadsGiveTheSameLights) {
+  const int W = 64, H = 32;
+  std::vector<float> rgb(W * H * 3);
+  for (int i = 0; i < W * H; ++i)
+    for (int k = 0; k < 3; ++k) rgb[3 * i + k] = 0.25f * (1 + (i * (k + 1)) % 9);  // exact in half and RGBE
+  fs::path dir = tempDir();
+  Probe reference(ImageView{rgb.data(), W, H, 3}, ProjectionKind::LatLong);
+  Rgb expected = reference.integral();
+  {
+    // OpenImageIO reads PFM but does not write it: write one by hand (little-endian, rows bottom to top).
+    std::ofstream pfm(dir / "p.pfm", std::ios::binary);
+    pfm << "PF\n" << W << " " << H << "\n-1.0\n";
+    for (int y = H - 1; y >= 0; --y) pfm.write(reinterpret_cast<const char*>(&rgb[y * W * 3]), W * 3 * sizeof(float));
+  }
+  for (auto [name, type] : {std::pair{"p.exr", OIIO::TypeDesc::HALF}, std::pair{"p.tif", OIIO::TypeDesc::FLOAT},
+                            std::pair{"p.pfm", OIIO::TypeDesc::UNKNOWN}, std::pair{"p.hdr", OIIO::TypeDesc::FLOAT}}) {
+    if (type != OIIO::TypeDesc::UNKNOWN) writeImage(dir / name, W, H, 3, rgb, type);
+    Probe p = Probe::load((dir / name).string());
+    EXPECT_EQ(p.projection().kind(), ProjectionKind::LatLong);
+    EXPECT_LE(maxRelativeDifference(p.integral(), expected), 1e-2) << name;  // RGBE rounds to 8-bit mantissas
+  }
+  fs::remove_all(dir);
+}
+
+TEST(Files, AutoProjectionPicksLatLongFor2To1AndAsksOtherwise) {
+  const int S = 32;
+  std::vector<float> px(S * S * 3, 1.0f);
+  fs::path dir = tempDir();
+  writeImage(dir / "square.exr", S, S, 3, px);
+  std::string m = expectError([&] { Probe::load((dir / "square.exr").string()); });
+  EXPECT_NE(m.find("--projection"), std::string::npos) << m;
+  ProbeOptions ball;
+  ball.projection = ProjectionChoice::MirrorBall;
+  Probe p = Probe::load((dir / "square.exr").string(), ball);
+  EXPECT_NEAR(p.integral()[0], 4 * kPi, 1e-9);
+  writeImage(dir / "wide.exr", 2 * S, S, 3, std::vector<float>(2 * S * S * 3, 1.0f));
+  Probe wide = Probe::load((dir / "wide.exr").string());
+  EXPECT_EQ(wide.projection().kind(), ProjectionKind::LatLong);
+  EXPECT_NE(wide.report().notes.at(0).find("auto"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace probelights
