@@ -88,9 +88,12 @@ Args parseBakeArgs(const std::vector<std::string>& argv) {
       a.probeOptions.projection = *p;
     } else if (arg == "--centroid") {
       std::string v = next();
-      if (v == "energy") a.bake.centroid = CentroidWeight::Energy;
-      else if (v == "energy2") a.bake.centroid = CentroidWeight::Energy2;
-      else throw UsageError("unknown centroid '" + v + "': use energy or energy2");
+      if (v == "energy")
+        a.bake.centroid = CentroidWeight::Energy;
+      else if (v == "energy2")
+        a.bake.centroid = CentroidWeight::Energy2;
+      else
+        throw UsageError("unknown centroid '" + v + "': use energy or energy2");
     } else if (arg == "--resolution") {
       std::string v = next();
       auto r = WorkingResolution::parse(v);
@@ -98,9 +101,12 @@ Args parseBakeArgs(const std::vector<std::string>& argv) {
       a.bake.resolution = *r;
     } else if (arg == "--nonfinite") {
       std::string v = next();
-      if (v == "error") a.probeOptions.nonFinite = NonFinitePolicy::Error;
-      else if (v == "zero") a.probeOptions.nonFinite = NonFinitePolicy::Zero;
-      else throw UsageError("unknown --nonfinite policy '" + v + "': use error or zero");
+      if (v == "error")
+        a.probeOptions.nonFinite = NonFinitePolicy::Error;
+      else if (v == "zero")
+        a.probeOptions.nonFinite = NonFinitePolicy::Zero;
+      else
+        throw UsageError("unknown --nonfinite policy '" + v + "': use error or zero");
     } else if (arg == "-o" || arg == "--output") {
       a.output = next();
     } else if (arg == "--preview") {
@@ -126,8 +132,8 @@ void printSummary(const Args& a, const Probe& probe, const BakeResult& r, double
               toString(probe.projection().kind()).c_str());
   for (const auto& note : probe.report().notes) std::printf("note       %s\n", note.c_str());
   for (const auto& note : r.notes) std::printf("note       %s\n", note.c_str());
-  std::printf("method     %s, %zu lights, cuts on a %dx%d grid (cell %d px)\n", toString(a.bake.method).c_str(),
-              r.lights.size(), (probe.width() + r.cellSize - 1) / r.cellSize,
+  std::printf("method     %s, %zu lights, cuts on a %dx%d grid (cell %d px)\n",
+              toString(a.bake.method).c_str(), r.lights.size(), (probe.width() + r.cellSize - 1) / r.cellSize,
               (probe.height() + r.cellSize - 1) / r.cellSize, r.cellSize);
   std::printf("\n   #  direction (x, y, z)          rgb (W/m^2)                      share  radius(deg)\n");
   for (std::size_t i = 0; i < r.lights.size(); ++i) {
@@ -142,8 +148,9 @@ void printSummary(const Args& a, const Probe& probe, const BakeResult& r, double
   double worst = 0;
   for (int k = 0; k < 3; ++k)
     if (r.totalRgb[k] > 0) worst = std::max(worst, std::abs(sum[k] - r.totalRgb[k]) / r.totalRgb[k]);
-  std::printf("\nenergy     probe integral (%.6g, %.6g, %.6g), lights sum (%.6g, %.6g, %.6g), max rel. diff %.1e\n",
-              r.totalRgb[0], r.totalRgb[1], r.totalRgb[2], sum[0], sum[1], sum[2], worst);
+  std::printf(
+      "\nenergy     probe integral (%.6g, %.6g, %.6g), lights sum (%.6g, %.6g, %.6g), max rel. diff %.1e\n",
+      r.totalRgb[0], r.totalRgb[1], r.totalRgb[2], sum[0], sum[1], sum[2], worst);
   std::printf("time (ms)  load %.1f  tables %.1f  partition %.1f  lights %.1f  (bake %.1f)\n", loadMs,
               r.timings.tablesMs, r.timings.partitionMs, r.timings.lightsMs,
               r.timings.tablesMs + r.timings.partitionMs + r.timings.lightsMs);

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <memory>
 
+#include "parallel.h"
 #include "probelights/error.h"
 #include "probelights/median_cut.h"
 #include "probelights/variance_minimization.h"
@@ -11,8 +12,10 @@ namespace probelights {
 
 std::string toString(Method method) {
   switch (method) {
-    case Method::MedianCut: return "median-cut";
-    case Method::Variance: return "variance";
+    case Method::MedianCut:
+      return "median-cut";
+    case Method::Variance:
+      return "variance";
   }
   return "?";
 }
@@ -26,7 +29,9 @@ std::optional<Method> parseMethod(const std::string& name) {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+double msSince(Clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
 
 Cut toPixels(const MomentTable& table, const Cut& cut) {
   Rect r = table.toPixels(cut.region);
@@ -49,8 +54,10 @@ BakeResult bake(const Probe& probe, const BakeOptions& options) {
 
   t = Clock::now();
   std::unique_ptr<CutRule> rule;
-  if (options.method == Method::MedianCut) rule = std::make_unique<MedianCutRule>(probe.projection());
-  else rule = std::make_unique<VarianceMinimizationRule>();
+  if (options.method == Method::MedianCut)
+    rule = std::make_unique<MedianCutRule>(probe.projection());
+  else
+    rule = std::make_unique<VarianceMinimizationRule>();
   Partition partition = partitionSphere(table, *rule, options.lights);
   result.timings.partitionMs = msSince(t);
 
@@ -59,7 +66,16 @@ BakeResult bake(const Probe& probe, const BakeOptions& options) {
   result.notes = partition.notes;
 
   t = Clock::now();
-  result.lights = lightsFromRegions(probe, result.regions, options.centroid);
+  if (table.hasCellSums()) {
+    // A coarse grid kept each cell's exact sums: a region's sums are those of its cells (no second image
+    // pass).
+    std::vector<PixelSums> sums(partition.regions.size());
+    parallelFor(static_cast<std::int64_t>(sums.size()),
+                [&](std::int64_t i) { sums[i] = table.cellSums(partition.regions[i]); });
+    result.lights = lightsFromSums(probe, result.regions, sums, options.centroid);
+  } else {
+    result.lights = lightsFromRegions(probe, result.regions, options.centroid);
+  }
   result.timings.lightsMs = msSince(t);
   return result;
 }

@@ -11,7 +11,8 @@ namespace probelights {
 Image readImage(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw Error("cannot read probe '" + path + "': no such file");
-  if (std::filesystem::is_directory(path, ec)) throw Error("cannot read probe '" + path + "': it is a directory");
+  if (std::filesystem::is_directory(path, ec))
+    throw Error("cannot read probe '" + path + "': it is a directory");
 
   auto in = OIIO::ImageInput::open(path);
   if (!in) {

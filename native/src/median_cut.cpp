@@ -5,8 +5,8 @@
 namespace probelights {
 
 std::optional<Cut> MedianCutRule::chooseCut(const MomentTable& table, const Rect& cells) const {
-  // Debevec 2005: cut across the longer side, measured on the sphere. If every lit cell lies in one column (row),
-  // only the other axis can be cut.
+  // Debevec 2005: cut across the longer side, measured on the sphere. If every lit cell lies in one column
+  // (row), only the other axis can be cut.
   auto extent = projection_.extentOnSphere(table.toPixels(cells));
   Axis axis = extent[0] >= extent[1] ? Axis::X : Axis::Y;
   auto range = litCutRange(table, cells, axis);
@@ -15,8 +15,8 @@ std::optional<Cut> MedianCutRule::chooseCut(const MomentTable& table, const Rect
     range = litCutRange(table, cells, axis);
     if (!range) return std::nullopt;
   }
-  // The energy left of a cut grows with its position: binary search the first position holding half, then keep
-  // whichever of it and its predecessor is closer to half.
+  // The energy left of a cut grows with its position: binary search the first position holding half, then
+  // keep whichever of it and its predecessor is closer to half.
   const double half = 0.5 * table.moments(cells).energy;
   auto energyBefore = [&](int p) { return table.moments(splitRect(cells, axis, p)[0]).energy; };
   const auto [lo, hi] = *range;

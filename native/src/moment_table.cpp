@@ -1,10 +1,10 @@
 #include "probelights/moment_table.h"
 
-#include <OpenImageIO/parallel.h>
-
 #include <algorithm>
 #include <charconv>
+#include <span>
 
+#include "parallel.h"
 #include "probelights/error.h"
 
 namespace probelights {
@@ -12,13 +12,15 @@ namespace probelights {
 int WorkingResolution::cellSize(int probeWidth) const {
   constexpr int kAutoWidth = 2048;
   switch (mode) {
-    case Mode::Full: return 1;
+    case Mode::Full:
+      return 1;
     case Mode::Auto: {
       int size = 1;
       while (probeWidth / size > kAutoWidth) size *= 2;
       return size;
     }
-    case Mode::Width: return std::max(1, (probeWidth + width - 1) / std::max(1, width));
+    case Mode::Width:
+      return std::max(1, (probeWidth + width - 1) / std::max(1, width));
   }
   return 1;
 }
@@ -34,9 +36,12 @@ std::optional<WorkingResolution> WorkingResolution::parse(const std::string& tex
 
 std::string WorkingResolution::toString() const {
   switch (mode) {
-    case Mode::Full: return "full";
-    case Mode::Auto: return "auto";
-    case Mode::Width: return std::to_string(width);
+    case Mode::Full:
+      return "full";
+    case Mode::Auto:
+      return "auto";
+    case Mode::Width:
+      return std::to_string(width);
   }
   return "?";
 }
@@ -47,59 +52,73 @@ MomentTable::MomentTable(const Probe& probe, int cellSize)
   const int W = probe.width(), H = probe.height();
   const int cellsX = (W + cellSize - 1) / cellSize, cellsY = (H + cellSize - 1) / cellSize;
   using Values = SummedAreaTable<5>::Values;
+  // A coarse grid keeps every cell's full sums, so lights are summed from cells without reading the image
+  // again; at full resolution that would be 100 bytes a pixel, and lights re-read the pixels of their regions
+  // instead.
+  if (cellSize > 1) cells_.reset(new CellLight[static_cast<std::size_t>(cellsX) * cellsY]);
 
-  // Cell rows are computed in parallel batches; the table consumes them in order. Each cell row is summed by one
-  // thread in a fixed order, so the table is bit-identical whatever the thread count.
-  const int batch = std::max(1, 64 / cellSize);
-  std::vector<Values> cells(static_cast<std::size_t>(batch) * cellsX);
-  std::vector<Rgb> rowIntegral(cellsY);
-  std::vector<long long> rowLit(cellsY);
+  // Cell rows are computed in parallel batches and consumed by the table in order. Each cell row is summed by
+  // one thread in a fixed order, so the table is bit-identical whatever the thread count.
+  const int batch = std::max(4, 256 / cellSize);
+  std::vector<Values> values(static_cast<std::size_t>(batch) * cellsX);
+  std::vector<PixelSums> rowTotals(cellsY);
+  std::vector<long long> rowLitCells(cellsY);
   int batchStart = -batch;
 
   auto computeCellRow = [&](int cy, std::span<Values> out) {
-    std::vector<Vec3> dirs(W);
-    std::vector<double> omega(W);
-    std::fill(out.begin(), out.end(), Values{});
-    Rgb integral{};
-    for (int y = cy * cellSize; y < std::min(H, (cy + 1) * cellSize); ++y) {
-      probe.projection().rowGeometry(y, 0, W, dirs, omega);
-      for (int x = 0; x < W; ++x) {
-        Rgb L = probe.radiance(x, y);
-        double w = luminance(L) * omega[x];
-        for (int k = 0; k < 3; ++k) integral[k] += L[k] * omega[x];
-        Values& c = out[x / cellSize];
-        c[0] += w;
-        c[1] += w * dirs[x].x;
-        c[2] += w * dirs[x].y;
-        c[3] += w * dirs[x].z;
+    thread_local std::vector<PixelSums> sums;
+    sums.assign(cellsX, PixelSums{});
+    accumulateRows(probe, cy * cellSize, std::min(H, (cy + 1) * cellSize), 0, W, cellSize, sums);
+    PixelSums total;
+    long long litCells = 0;
+    for (int cx = 0; cx < cellsX; ++cx) {
+      const PixelSums& c = sums[cx];
+      out[cx] = {c.energy, c.moment.x, c.moment.y, c.moment.z, c.litPixels > 0 ? 1.0 : 0.0};
+      total += c;
+      litCells += c.litPixels > 0;
+      if (cells_) {
+        cells_[static_cast<std::size_t>(cy) * cellsX + cx] = {
+            {c.rgb[0], c.rgb[1], c.rgb[2]}, c.solidAngle, c.energy2, {c.moment2.x, c.moment2.y, c.moment2.z}};
       }
     }
-    rowIntegral[cy] = integral;
-    long long lit = 0;
-    for (Values& c : out) {
-      c[4] = c[0] > 0 ? 1.0 : 0.0;
-      lit += c[0] > 0;
-    }
-    rowLit[cy] = lit;
+    rowTotals[cy] = total;
+    rowLitCells[cy] = litCells;
   };
 
   sat_ = SummedAreaTable<5>(cellsX, cellsY, [&](int cy, std::span<Values> row) {
     if (cy >= batchStart + batch) {
       batchStart = cy;
       int n = std::min(batch, cellsY - cy);
-      OIIO::parallel_for(0, n, [&](int64_t i) {
+      parallelFor(n, [&](std::int64_t i) {
         computeCellRow(cy + static_cast<int>(i),
-                       std::span<Values>(cells.data() + i * cellsX, static_cast<std::size_t>(cellsX)));
+                       std::span<Values>(values.data() + i * cellsX, static_cast<std::size_t>(cellsX)));
       });
     }
-    std::copy_n(cells.data() + static_cast<std::size_t>(cy - batchStart) * cellsX, cellsX, row.begin());
+    std::copy_n(values.data() + static_cast<std::size_t>(cy - batchStart) * cellsX, cellsX, row.begin());
   });
 
-  for (int cy = 0; cy < cellsY; ++cy) {
-    for (int k = 0; k < 3; ++k) integral_[k] += rowIntegral[cy][k];
-    litCells_ += rowLit[cy];
-  }
-  totalEnergy_ = sat_.sum(wholeGrid())[0];
+  PixelSums total;
+  for (const PixelSums& r : rowTotals) total += r;
+  integral_ = total.rgb;
+  totalEnergy_ = total.energy;
+  for (long long n : rowLitCells) litCells_ += n;
+}
+
+PixelSums MomentTable::cellSums(const Rect& c) const {
+  PixelSums s;
+  RegionMoments m = moments(c);
+  s.energy = m.energy;
+  s.moment = m.moment;
+  s.litPixels = m.litCells;  // lit cells: all a light needs to know is that there is light
+  for (int y = c.y0; y < c.y1; ++y)
+    for (int x = c.x0; x < c.x1; ++x) {
+      const CellLight& cell = cells_[static_cast<std::size_t>(y) * sat_.width() + x];
+      for (int k = 0; k < 3; ++k) s.rgb[k] += cell.rgb[k];
+      s.solidAngle += cell.solidAngle;
+      s.energy2 += cell.energy2;
+      s.moment2 += Vec3{cell.moment2[0], cell.moment2[1], cell.moment2[2]};
+    }
+  return s;
 }
 
 Rect MomentTable::toPixels(const Rect& c) const {

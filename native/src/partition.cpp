@@ -17,7 +17,8 @@ std::optional<std::array<int, 2>> litCutRange(const MomentTable& table, const Re
   const int start = axis == Axis::X ? cells.x0 : cells.y0, end = axis == Axis::X ? cells.x1 : cells.y1;
   const long long total = table.moments(cells).litCells;
   auto litBefore = [&](int p) { return table.moments(splitRect(cells, axis, p)[0]).litCells; };
-  // Valid p: the first part [start, p) has a lit cell and the second [p, end) has one, i.e. 1 <= litBefore(p) < total.
+  // Valid p: the first part [start, p) has a lit cell and the second [p, end) has one, i.e. 1 <= litBefore(p)
+  // < total.
   int first = firstTrue(start + 1, end - 1, [&](int p) { return litBefore(p) >= 1; });
   int last = firstTrue(start + 1, end - 1, [&](int p) { return litBefore(p) >= total; }) - 1;
   if (first > last) return std::nullopt;
@@ -33,8 +34,9 @@ Partition partitionSphere(const MomentTable& table, const CutRule& rule, int cou
     return p;
   }
 
-  // Splits region i in place (first part) and appends the second; false if the rule cannot cut it. A region is
-  // cut only where both parts keep a lit cell (CutRule contract), so every split adds exactly one lit region.
+  // Splits region i in place (first part) and appends the second; false if the rule cannot cut it. A region
+  // is cut only where both parts keep a lit cell (CutRule contract), so every split adds exactly one lit
+  // region.
   auto split = [&](std::size_t i) {
     const Rect r = p.regions[i];
     if (table.moments(r).litCells < 2) return false;
@@ -60,7 +62,8 @@ Partition partitionSphere(const MomentTable& table, const CutRule& rule, int cou
   std::priority_queue<Entry> queue;
   long long order = 0;
   auto push = [&](std::size_t i) {
-    if (table.moments(p.regions[i]).litCells >= 2) queue.emplace(rule.priority(table, p.regions[i]), -order++, i);
+    if (table.moments(p.regions[i]).litCells >= 2)
+      queue.emplace(rule.priority(table, p.regions[i]), -order++, i);
   };
   for (std::size_t i = 0; i < p.regions.size(); ++i) push(i);
   while (static_cast<int>(p.regions.size()) < count && !queue.empty()) {

@@ -2,11 +2,11 @@
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
-#include <OpenImageIO/parallel.h>
 
 #include <algorithm>
 #include <cmath>
 
+#include "parallel.h"
 #include "probelights/error.h"
 
 namespace probelights {
@@ -27,7 +27,7 @@ void writePreview(const Probe& probe, const BakeResult& result, const std::strin
 
   // Box-filter the probe down to the preview size.
   std::vector<Rgb> small(static_cast<std::size_t>(pw) * ph);
-  OIIO::parallel_for(0, ph, [&](int64_t j) {
+  parallelFor(ph, [&](std::int64_t j) {
     int y0 = static_cast<int>(j * H / ph), y1 = std::max(y0 + 1, static_cast<int>((j + 1) * H / ph));
     for (int i = 0; i < pw; ++i) {
       int x0 = static_cast<int>(static_cast<int64_t>(i) * W / pw);
@@ -61,7 +61,8 @@ void writePreview(const Probe& probe, const BakeResult& result, const std::strin
       buf.setpixel(i, j, px, 3);
     }
 
-  // Region borders, then the lights: a red square at each light's direction, larger for a larger energy share.
+  // Region borders, then the lights: a red square at each light's direction, larger for a larger energy
+  // share.
   const float border[3] = {0.15f, 0.9f, 0.25f}, lightColour[3] = {1.0f, 0.1f, 0.1f};
   auto sx = [&](int x) { return static_cast<int>(static_cast<int64_t>(x) * pw / W); };
   auto sy = [&](int y) { return static_cast<int>(static_cast<int64_t>(y) * ph / H); };

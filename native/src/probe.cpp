@@ -1,11 +1,10 @@
 #include "probelights/probe.h"
 
-#include <OpenImageIO/parallel.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
+#include "parallel.h"
 #include "probelights/error.h"
 
 namespace probelights {
@@ -15,9 +14,12 @@ std::optional<ProjectionChoice> parseProjectionChoice(const std::string& name) {
   auto kind = parseProjection(name);
   if (!kind) return std::nullopt;
   switch (*kind) {
-    case ProjectionKind::LatLong: return ProjectionChoice::LatLong;
-    case ProjectionKind::MirrorBall: return ProjectionChoice::MirrorBall;
-    case ProjectionKind::Angular: return ProjectionChoice::Angular;
+    case ProjectionKind::LatLong:
+      return ProjectionChoice::LatLong;
+    case ProjectionKind::MirrorBall:
+      return ProjectionChoice::MirrorBall;
+    case ProjectionKind::Angular:
+      return ProjectionChoice::Angular;
   }
   return std::nullopt;
 }
@@ -27,25 +29,29 @@ namespace {
 void checkShape(const ImageView& view, const std::string& name) {
   if (!view.pixels && view.width * view.height > 0) throw Error("probe " + name + " has no pixel buffer");
   if (view.width <= 0 || view.height <= 0)
-    throw Error("probe " + name + " is empty (" + std::to_string(view.width) + "x" + std::to_string(view.height) +
-                " pixels)");
+    throw Error("probe " + name + " is empty (" + std::to_string(view.width) + "x" +
+                std::to_string(view.height) + " pixels)");
   if (view.channels <= 0) throw Error("probe " + name + " has no channels");
 }
 
 ProjectionKind resolveProjection(ProjectionChoice choice, int width, int height, const std::string& name,
                                  std::vector<std::string>& notes) {
   switch (choice) {
-    case ProjectionChoice::LatLong: return ProjectionKind::LatLong;
-    case ProjectionChoice::MirrorBall: return ProjectionKind::MirrorBall;
-    case ProjectionChoice::Angular: return ProjectionKind::Angular;
-    case ProjectionChoice::Auto: break;
+    case ProjectionChoice::LatLong:
+      return ProjectionKind::LatLong;
+    case ProjectionChoice::MirrorBall:
+      return ProjectionKind::MirrorBall;
+    case ProjectionChoice::Angular:
+      return ProjectionKind::Angular;
+    case ProjectionChoice::Auto:
+      break;
   }
   if (width == 2 * height) {
     notes.push_back("projection: lat-long (auto: the image is 2:1)");
     return ProjectionKind::LatLong;
   }
-  throw Error("cannot tell the projection of " + name + " (" + std::to_string(width) + "x" + std::to_string(height) +
-              ", not 2:1): say latlong, mirror-ball or angular (CLI: --projection)");
+  throw Error("cannot tell the projection of " + name + " (" + std::to_string(width) + "x" +
+              std::to_string(height) + ", not 2:1): say latlong, mirror-ball or angular (CLI: --projection)");
 }
 
 }  // namespace
@@ -78,7 +84,7 @@ void Probe::validate(NonFinitePolicy nonFinite) {
     int firstBadX = -1;
   };
   std::vector<RowCount> rows(view_.height);
-  OIIO::parallel_for(0, view_.height, [&](int64_t y) {
+  parallelFor(view_.height, [&](std::int64_t y) {
     RowCount& c = rows[y];
     for (int x = 0; x < view_.width; ++x) {
       const float* p = view_.pixel(x, static_cast<int>(y));
@@ -104,8 +110,8 @@ void Probe::validate(NonFinitePolicy nonFinite) {
     if (nonFinite == NonFinitePolicy::Error)
       throw Error(std::to_string(report_.nonFiniteSamples) + " NaN/Inf samples, " + where +
                   "; to read them as 0 use the non-finite policy 'zero' (CLI: --nonfinite=zero)");
-    report_.notes.push_back("read " + std::to_string(report_.nonFiniteSamples) + " NaN/Inf samples as 0 (" + where +
-                            ")");
+    report_.notes.push_back("read " + std::to_string(report_.nonFiniteSamples) + " NaN/Inf samples as 0 (" +
+                            where + ")");
   }
   if (report_.negativeSamples > 0)
     report_.notes.push_back("clamped " + std::to_string(report_.negativeSamples) +
@@ -114,7 +120,7 @@ void Probe::validate(NonFinitePolicy nonFinite) {
 
 Rgb Probe::integral() const {
   std::vector<Rgb> rowSums(view_.height);
-  OIIO::parallel_for(0, view_.height, [&](int64_t y) {
+  parallelFor(view_.height, [&](std::int64_t y) {
     std::vector<Vec3> dirs(view_.width);
     std::vector<double> omega(view_.width);
     projection_.rowGeometry(static_cast<int>(y), 0, view_.width, dirs, omega);

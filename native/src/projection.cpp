@@ -7,9 +7,12 @@ namespace probelights {
 
 std::string toString(ProjectionKind kind) {
   switch (kind) {
-    case ProjectionKind::LatLong: return "latlong";
-    case ProjectionKind::MirrorBall: return "mirror-ball";
-    case ProjectionKind::Angular: return "angular";
+    case ProjectionKind::LatLong:
+      return "latlong";
+    case ProjectionKind::MirrorBall:
+      return "mirror-ball";
+    case ProjectionKind::Angular:
+      return "angular";
   }
   return "?";
 }
@@ -35,7 +38,7 @@ double discCornerArea(double A, double B) {
   A = std::clamp(A, -1.0, 1.0);
   B = std::clamp(B, -1.0, 1.0);
   const double c = std::sqrt(std::max(0.0, 1.0 - B * B));  // where |B| = s
-  auto upper = [&](double lo, double hi) {                   // integral of (B + s) over [lo, hi]
+  auto upper = [&](double lo, double hi) {                 // integral of (B + s) over [lo, hi]
     return hi > lo ? B * (hi - lo) + circleSegmentPrimitive(hi) - circleSegmentPrimitive(lo) : 0.0;
   };
   auto full = [&](double lo, double hi) {  // integral of 2s over [lo, hi]
@@ -58,9 +61,10 @@ double angularDensity(double a, double b) {
   return kPi * std::sin(kPi * r) / r;
 }
 
-// Integral of the angular density over [a0, a1] x [b0, b1] by a 3x3 Gauss-Legendre rule, exact to ~1e-10 where
-// the density is smooth (inside the disc). A cell the rim crosses is split in four, down to 1/32 of a pixel; the
-// density falls to 0 at the rim (~pi^2 (1 - r)), so what the finest cells miss is ~1e-7 of a rim pixel.
+// Integral of the angular density over [a0, a1] x [b0, b1] by a 3x3 Gauss-Legendre rule, exact to ~1e-10
+// where the density is smooth (inside the disc). A cell the rim crosses is split in four, down to 1/32 of a
+// pixel; the density falls to 0 at the rim (~pi^2 (1 - r)), so what the finest cells miss is ~1e-7 of a rim
+// pixel.
 double angularIntegral(double a0, double a1, double b0, double b1, int depth) {
   auto r2 = [](double a, double b) { return a * a + b * b; };
   double nearA = (a0 <= 0 && a1 >= 0) ? 0.0 : std::min(std::abs(a0), std::abs(a1));
@@ -82,11 +86,13 @@ double angularIntegral(double a0, double a1, double b0, double b1, int depth) {
 }  // namespace
 
 double rectangleAreaInUnitDisc(double a0, double a1, double b0, double b1) {
-  double area = discCornerArea(a1, b1) - discCornerArea(a0, b1) - discCornerArea(a1, b0) + discCornerArea(a0, b0);
+  double area =
+      discCornerArea(a1, b1) - discCornerArea(a0, b1) - discCornerArea(a1, b0) + discCornerArea(a0, b0);
   return std::max(0.0, area);
 }
 
-Projection::Projection(ProjectionKind kind, int width, int height) : kind_(kind), width_(width), height_(height) {
+Projection::Projection(ProjectionKind kind, int width, int height)
+    : kind_(kind), width_(width), height_(height) {
   if (kind_ != ProjectionKind::LatLong) return;
   cosPhi_.resize(width);
   sinPhi_.resize(width);
@@ -140,14 +146,16 @@ std::array<double, 2> Projection::imagePosition(const Vec3& dir) const {
       return {u - std::floor(u), 0.5 - el / kPi};
     }
     case ProjectionKind::MirrorBall: {
-      // Inverse of the reflection (Cycles' direction_to_mirrorball): n is the half-vector of d and (0, -1, 0).
+      // Inverse of the reflection (Cycles' direction_to_mirrorball): n is the half-vector of d and (0, -1,
+      // 0).
       double div = 2.0 * std::sqrt(std::max(0.5 * (1.0 - d.y), 0.0));
       double a = div > 0 ? d.x / div : 0.0, b = div > 0 ? d.z / div : 0.0;
       return {0.5 * (a + 1.0), 0.5 * (1.0 - b)};
     }
     case ProjectionKind::Angular: {
       double theta = std::acos(std::clamp(-d.y, -1.0, 1.0)), h = std::sqrt(d.x * d.x + d.z * d.z);
-      if (h < 1e-15) return {0.5, theta > 1.0 ? 0.0 : 0.5};  // -Y is the centre; +Y is the whole rim: take its top
+      if (h < 1e-15)
+        return {0.5, theta > 1.0 ? 0.0 : 0.5};  // -Y is the centre; +Y is the whole rim: take its top
       double r = theta / kPi;
       return {0.5 * (r * d.x / h + 1.0), 0.5 * (1.0 - r * d.z / h)};
     }
@@ -164,7 +172,8 @@ double Projection::pixelSolidAngle(int x, int y) const {
   return angularIntegral(a0, a1, b0, b1, 5);
 }
 
-void Projection::rowGeometry(int y, int x0, int x1, std::span<Vec3> dirs, std::span<double> solidAngles) const {
+void Projection::rowGeometry(int y, int x0, int x1, std::span<Vec3> dirs,
+                             std::span<double> solidAngles) const {
   assert(static_cast<int>(dirs.size()) >= x1 - x0 && static_cast<int>(solidAngles.size()) >= x1 - x0);
   if (kind_ == ProjectionKind::LatLong) {
     const double ce = cosEl_[y], se = sinEl_[y], dw = rowSolidAngle_[y];

@@ -6,8 +6,9 @@
 namespace probelights {
 
 std::optional<Cut> VarianceMinimizationRule::chooseCut(const MomentTable& table, const Rect& cells) const {
-  // Viriyothai & Debevec 2009: try every cut on both axes; keep the one whose worse part has the least variance.
-  // Ties (e.g. two parts with no spread at all) go to the cut that balances energy best, then to the first found.
+  // Viriyothai & Debevec 2009: try every cut on both axes; keep the one whose worse part has the least
+  // variance. Ties (e.g. two parts with no spread at all) go to the cut that balances energy best, then to
+  // the first found.
   std::optional<Cut> best;
   double bestCost = std::numeric_limits<double>::infinity(), bestImbalance = bestCost;
   for (Axis axis : {Axis::X, Axis::Y}) {

@@ -1,4 +1,5 @@
-// Median cut and variance minimization: energy conservation, the papers' properties, any N, hard small probes.
+// Median cut and variance minimization: energy conservation, the papers' properties, any N, hard small
+// probes.
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
@@ -58,11 +59,13 @@ TEST(MedianCut, PowerOfTwoGivesEqualEnergyRegionsOnAUniformProbe) {
   }
 }
 
-// Seed 000, Figure 2: two unequal sources side by side. Median cut's equal-energy cut passes through the brighter
-// one; variance minimization cuts between them.
+// Seed 000, Figure 2: two unequal sources side by side. Median cut's equal-energy cut passes through the
+// brighter one; variance minimization cuts between them.
 TEST(FirstCut, MedianCutSplitsTheBrighterSourceVarianceSeparatesThem) {
   const int W = 512, H = 256, ax = 150, bx = 360, cy = 128, radius = 12;
-  auto inDisc = [&](int x, int y, int cx) { return (x - cx) * (x - cx) + (y - cy) * (y - cy) <= radius * radius; };
+  auto inDisc = [&](int x, int y, int cx) {
+    return (x - cx) * (x - cx) + (y - cy) * (y - cy) <= radius * radius;
+  };
   auto t = makeProbe(W, H, ProjectionKind::LatLong, [&](int x, int y) {
     if (inDisc(x, y, ax)) return Rgb{10, 10, 10};
     if (inDisc(x, y, bx)) return Rgb{4, 4, 4};
@@ -127,8 +130,9 @@ TEST(AnyN, MoreLightsThanLitPixelsGivesFewerAndSaysSo) {
 
 TEST(HardProbes, SingleHotPixelGivesOneExactLight) {
   const int W = 128, H = 64, px = 77, py = 20;
-  auto t = makeProbe(W, H, ProjectionKind::LatLong,
-                     [&](int x, int y) { return x == px && y == py ? Rgb{1e7, 2e7, 3e7} : Rgb{0, 0, 0}; });
+  auto t = makeProbe(W, H, ProjectionKind::LatLong, [&](int x, int y) {
+    return x == px && y == py ? Rgb{1e7, 2e7, 3e7} : Rgb{0, 0, 0};
+  });
   for (Method m : kMethods)
     for (int n : {1, 4, 5}) {
       auto r = bakeWith(t.probe, m, n);
@@ -136,7 +140,8 @@ TEST(HardProbes, SingleHotPixelGivesOneExactLight) {
       const Light& l = r.lights[0];
       double omega = t.probe.projection().pixelSolidAngle(px, py);
       EXPECT_NEAR(l.rgb[1], 2e7 * omega, 1e-9 * 2e7 * omega);
-      EXPECT_NEAR(dot(l.direction, *t.probe.projection().direction((px + 0.5) / W, (py + 0.5) / H)), 1.0, 1e-12);
+      EXPECT_NEAR(dot(l.direction, *t.probe.projection().direction((px + 0.5) / W, (py + 0.5) / H)), 1.0,
+                  1e-12);
       EXPECT_NEAR(l.angularRadius, 0.0, 1e-6);
       EXPECT_EQ(l.energyShare, 1.0);
     }
@@ -144,7 +149,9 @@ TEST(HardProbes, SingleHotPixelGivesOneExactLight) {
 
 TEST(HardProbes, TinyAndDegenerateShapes) {
   for (auto [w, h] : {std::pair{1, 1}, std::pair{2, 1}, std::pair{1, 7}, std::pair{9, 1}, std::pair{3, 2}}) {
-    auto t = makeProbe(w, h, ProjectionKind::LatLong, [](int x, int y) { return Rgb{1.0 + x, 2.0 + y, 0.5}; });
+    auto t = makeProbe(w, h, ProjectionKind::LatLong, [](int x, int y) {
+      return Rgb{1.0 + x, 2.0 + y, 0.5};
+    });
     for (Method m : kMethods)
       for (int n : {1, 2, 3, 16}) {
         auto r = bakeWith(t.probe, m, n);
@@ -188,8 +195,9 @@ TEST(HardProbes, ASourceStraddlingTheSeamPointsBehind) {
 
 TEST(HardProbes, BrightSunBesideDimSky) {
   // 1e7 : 1e-2, as in the issue, at a size a test can afford.
-  auto t = makeProbe(1024, 512, ProjectionKind::LatLong,
-                     [](int x, int y) { return x == 700 && y == 100 ? Rgb{1e7, 1e7, 1e7} : Rgb{1e-2, 1e-2, 1e-2}; });
+  auto t = makeProbe(1024, 512, ProjectionKind::LatLong, [](int x, int y) {
+    return x == 700 && y == 100 ? Rgb{1e7, 1e7, 1e7} : Rgb{1e-2, 1e-2, 1e-2};
+  });
   for (Method m : kMethods)
     for (int n : {16, 256}) {
       auto r = bakeWith(t.probe, m, n);

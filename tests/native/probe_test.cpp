@@ -1,13 +1,14 @@
-// Probe input: real files through OpenImageIO, caller buffers without copying, channels, bad pixels, bad inputs.
+// Probe input: real files through OpenImageIO, caller buffers without copying, channels, bad pixels, bad
+// inputs.
 #include "probelights/probe.h"
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <unistd.h>
 #include <limits>
 
 #include "probelights/bake.h"
@@ -27,7 +28,8 @@ std::vector<fs::path> realProbes() {
   for (const char* dir : {PROBELIGHTS_SHARED_HDRI, PROBELIGHTS_STUDIOLIGHTS}) {
     std::error_code ec;
     for (const auto& entry : fs::directory_iterator(dir, ec))
-      if (entry.path().extension() == ".exr" || entry.path().extension() == ".hdr") files.push_back(entry.path());
+      if (entry.path().extension() == ".exr" || entry.path().extension() == ".hdr")
+        files.push_back(entry.path());
   }
   std::sort(files.begin(), files.end());
   return files;
@@ -148,10 +150,9 @@ TEST(BadPixels, NonFiniteSamplesAreAnErrorNamingHowManyAndWhere) {
 
 TEST(BadInputs, OneLineErrors) {
   fs::path dir = tempDir();
-  EXPECT_NE(expectError([&] { Probe::load((dir / "missing.exr").string()); }).find("no such file"), std::string::npos);
-  {
-    std::ofstream(dir / "garbage.exr") << "this is not an image\n";
-  }
+  EXPECT_NE(expectError([&] { Probe::load((dir / "missing.exr").string()); }).find("no such file"),
+            std::string::npos);
+  { std::ofstream(dir / "garbage.exr") << "this is not an image\n"; }
   expectError([&] { Probe::load((dir / "garbage.exr").string()); });
   expectError([&] { Probe::load(dir.string()); });
   expectError([&] { Probe p(ImageView{nullptr, 0, 0, 3}, ProjectionKind::LatLong); });
@@ -182,10 +183,12 @@ TEST(Files, FormatsOpenImageIOReadsGiveTheSameLights) {
     // OpenImageIO reads PFM but does not write it: write one by hand (little-endian, rows bottom to top).
     std::ofstream pfm(dir / "p.pfm", std::ios::binary);
     pfm << "PF\n" << W << " " << H << "\n-1.0\n";
-    for (int y = H - 1; y >= 0; --y) pfm.write(reinterpret_cast<const char*>(&rgb[y * W * 3]), W * 3 * sizeof(float));
+    for (int y = H - 1; y >= 0; --y)
+      pfm.write(reinterpret_cast<const char*>(&rgb[y * W * 3]), W * 3 * sizeof(float));
   }
-  for (auto [name, type] : {std::pair{"p.exr", OIIO::TypeDesc::HALF}, std::pair{"p.tif", OIIO::TypeDesc::FLOAT},
-                            std::pair{"p.pfm", OIIO::TypeDesc::UNKNOWN}, std::pair{"p.hdr", OIIO::TypeDesc::FLOAT}}) {
+  for (auto [name, type] :
+       {std::pair{"p.exr", OIIO::TypeDesc::HALF}, std::pair{"p.tif", OIIO::TypeDesc::FLOAT},
+        std::pair{"p.pfm", OIIO::TypeDesc::UNKNOWN}, std::pair{"p.hdr", OIIO::TypeDesc::FLOAT}}) {
     if (type != OIIO::TypeDesc::UNKNOWN) writeImage(dir / name, W, H, 3, rgb, type);
     Probe p = Probe::load((dir / name).string());
     EXPECT_EQ(p.projection().kind(), ProjectionKind::LatLong);

@@ -1,5 +1,5 @@
-// Projections: the lat-long convention (a test that catches a flipped axis), mirror ball and angular maps, and
-// exact pixel solid angles.
+// Projections: the lat-long convention (a test that catches a flipped axis), mirror ball and angular maps,
+// and exact pixel solid angles.
 #include "probelights/projection.h"
 
 #include <gtest/gtest.h>
@@ -22,8 +22,9 @@ Vec3 conventionDirection(double u, double v) {
 
 // One bright pixel in a black lat-long probe; the single light must point where the convention says.
 Vec3 brightPixelLight(int width, int height, int px, int py) {
-  auto t = makeProbe(width, height, ProjectionKind::LatLong,
-                     [&](int x, int y) { return x == px && y == py ? Rgb{100, 100, 100} : Rgb{0, 0, 0}; });
+  auto t = makeProbe(width, height, ProjectionKind::LatLong, [&](int x, int y) {
+    return x == px && y == py ? Rgb{100, 100, 100} : Rgb{0, 0, 0};
+  });
   auto r = bakeWith(t.probe, Method::Variance, 1);
   EXPECT_EQ(r.lights.size(), 1u);
   return r.lights.at(0).direction;
@@ -64,10 +65,11 @@ TEST(Projections, SolidAnglesSumToTheSphere) {
     int w, h;
     double tolerance;
   };
-  for (Case c : {Case{ProjectionKind::LatLong, 1024, 512, 1e-12}, Case{ProjectionKind::LatLong, 1000, 500, 1e-12},
-                 Case{ProjectionKind::LatLong, 3, 1, 1e-12}, Case{ProjectionKind::MirrorBall, 256, 256, 1e-10},
-                 Case{ProjectionKind::MirrorBall, 101, 77, 1e-10}, Case{ProjectionKind::Angular, 256, 256, 1e-6},
-                 Case{ProjectionKind::Angular, 99, 99, 1e-6}}) {
+  for (Case c :
+       {Case{ProjectionKind::LatLong, 1024, 512, 1e-12}, Case{ProjectionKind::LatLong, 1000, 500, 1e-12},
+        Case{ProjectionKind::LatLong, 3, 1, 1e-12}, Case{ProjectionKind::MirrorBall, 256, 256, 1e-10},
+        Case{ProjectionKind::MirrorBall, 101, 77, 1e-10}, Case{ProjectionKind::Angular, 256, 256, 1e-6},
+        Case{ProjectionKind::Angular, 99, 99, 1e-6}}) {
     Projection p(c.kind, c.w, c.h);
     double total = 0;
     for (int y = 0; y < c.h; ++y)
@@ -97,13 +99,15 @@ TEST(MirrorBall, MatchesBlendersOrientation) {
   Projection p(ProjectionKind::MirrorBall, 256, 256);
   auto centre = *p.direction(0.5, 0.5);
   EXPECT_NEAR(centre.y, -1, 1e-12);  // the ball's centre reflects the camera, which looks along +Y
-  // Half-way to the right edge: the normal is tilted 30 degrees, the reflection 60 degrees from -Y towards +X.
+  // Half-way to the right edge: the normal is tilted 30 degrees, the reflection 60 degrees from -Y towards
+  // +X.
   auto right = *p.direction(0.75, 0.5);
   EXPECT_NEAR(right.x, std::sin(kPi / 3), 1e-12);
   EXPECT_NEAR(right.y, -std::cos(kPi / 3), 1e-12);
   auto up = *p.direction(0.5, 0.25);  // v from the top: up in the image is +Z
   EXPECT_NEAR(up.z, std::sin(kPi / 3), 1e-12);
-  // Half-way to the rim in radius is the equal-area half: the cap around -Y of solid angle pi (a quarter sphere).
+  // Half-way to the rim in radius is the equal-area half: the cap around -Y of solid angle pi (a quarter
+  // sphere).
   auto rim = *p.direction(0.5 + 0.5 * 0.999999, 0.5);
   EXPECT_GT(rim.y, 0.999);
   EXPECT_FALSE(p.direction(0.95, 0.95));  // a corner outside the ball
@@ -121,7 +125,8 @@ TEST(Angular, AngleGrowsLinearlyWithRadius) {
 
 TEST(Angular, PixelSolidAngleMatchesFineQuadrature) {
   Projection p(ProjectionKind::Angular, 64, 64);
-  for (auto [x, y] : {std::pair{32, 32}, std::pair{10, 30}, std::pair{3, 25}, std::pair{0, 31}, std::pair{60, 60}}) {
+  for (auto [x, y] :
+       {std::pair{32, 32}, std::pair{10, 30}, std::pair{3, 25}, std::pair{0, 31}, std::pair{60, 60}}) {
     // Brute force: midpoint rule on 400 x 400 sub-pixels of the density pi sin(pi r) / r.
     double sum = 0, h = 2.0 / 64 / 400;
     for (int i = 0; i < 400; ++i)

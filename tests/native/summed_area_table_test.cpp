@@ -62,15 +62,17 @@ TEST(MomentTable, VarianceIsTheSpreadAboutTheCentroidOnTheSphere) {
   }
 }
 
-// An 8192x4096 probe holding a 1-pixel sun of 1e7 next to a sky of 1e-2: region sums from the tables must agree
-// with brute-force sums, where plain float prefix sums lose the sky entirely.
+// An 8192x4096 probe holding a 1-pixel sun of 1e7 next to a sky of 1e-2: region sums from the tables must
+// agree with brute-force sums, where plain float prefix sums lose the sky entirely.
 TEST(MomentTable, EightKSunAndSkyStress) {
   const int W = 8192, H = 4096, sunX = 3000, sunY = 1000;
   std::vector<float> grey(static_cast<std::size_t>(W) * H, 1e-2f);
   grey[static_cast<std::size_t>(sunY) * W + sunX] = 1e7f;
   Probe probe(ImageView{grey.data(), W, H, 1}, ProjectionKind::LatLong);
   const Projection& p = probe.projection();
-  auto weight = [&](int x, int y) { return static_cast<double>(grey[static_cast<std::size_t>(y) * W + x]) * p.pixelSolidAngle(x, y); };
+  auto weight = [&](int x, int y) {
+    return static_cast<double>(grey[static_cast<std::size_t>(y) * W + x]) * p.pixelSolidAngle(x, y);
+  };
   auto brute = [&](const Rect& r) {
     long double s = 0;
     for (int y = r.y0; y < r.y1; ++y)
@@ -78,13 +80,17 @@ TEST(MomentTable, EightKSunAndSkyStress) {
     return static_cast<double>(s);
   };
 
-  // Regions of sky after, below and beside the sun (whose prefix sums contain it), one holding it, and tiny ones.
-  const std::vector<Rect> rects = {
-      {sunX + 1, sunY, sunX + 2, sunY + 1},     {sunX + 1, sunY + 1, sunX + 11, sunY + 11},
-      {5000, 3000, 5010, 3010},                 {sunX + 1, sunY, W, sunY + 1},
-      {4000, 2000, 8192, 4096},                 {0, sunY + 1, W, H},
-      {sunX - 5, sunY - 5, sunX + 5, sunY + 5}, {0, 0, W, H},
-      {8191, 4095, 8192, 4096}};
+  // Regions of sky after, below and beside the sun (whose prefix sums contain it), one holding it, and tiny
+  // ones.
+  const std::vector<Rect> rects = {{sunX + 1, sunY, sunX + 2, sunY + 1},
+                                   {sunX + 1, sunY + 1, sunX + 11, sunY + 11},
+                                   {5000, 3000, 5010, 3010},
+                                   {sunX + 1, sunY, W, sunY + 1},
+                                   {4000, 2000, 8192, 4096},
+                                   {0, sunY + 1, W, H},
+                                   {sunX - 5, sunY - 5, sunX + 5, sunY + 5},
+                                   {0, 0, W, H},
+                                   {8191, 4095, 8192, 4096}};
 
   {
     MomentTable table(probe, 1);
@@ -92,7 +98,8 @@ TEST(MomentTable, EightKSunAndSkyStress) {
     for (const Rect& r : rects) {
       // The bound of summed_area_table.h: eps * (largest prefix) * (rows + columns), and 1e-7 relative.
       double expected = brute(r), got = table.moments(r).energy;
-      double bound = std::max(1e-7 * expected, 4 * std::numeric_limits<double>::epsilon() * total * (r.width() + r.height()));
+      double bound = std::max(1e-7 * expected,
+                              4 * std::numeric_limits<double>::epsilon() * total * (r.width() + r.height()));
       EXPECT_NEAR(got, expected, bound) << r.x0 << "," << r.y0 << " " << r.width() << "x" << r.height();
       if (r.area() >= 100 && r.y0 > 0 && r.y1 < H) {
         EXPECT_NEAR(got, expected, 2e-7 * expected);

@@ -17,12 +17,14 @@ struct TestProbe {
 };
 
 // An RGB probe whose pixel (x, y) has radiance fill(x, y).
-inline TestProbe makeProbe(int width, int height, ProjectionKind kind, const std::function<Rgb(int, int)>& fill) {
+inline TestProbe makeProbe(int width, int height, ProjectionKind kind,
+                           const std::function<Rgb(int, int)>& fill) {
   auto pixels = std::make_shared<std::vector<float>>(static_cast<std::size_t>(width) * height * 3);
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       Rgb c = fill(x, y);
-      for (int k = 0; k < 3; ++k) (*pixels)[(static_cast<std::size_t>(y) * width + x) * 3 + k] = static_cast<float>(c[k]);
+      for (int k = 0; k < 3; ++k)
+        (*pixels)[(static_cast<std::size_t>(y) * width + x) * 3 + k] = static_cast<float>(c[k]);
     }
   Probe probe(ImageView{pixels->data(), width, height, 3}, kind);
   return {pixels, std::move(probe)};

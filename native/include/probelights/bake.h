@@ -1,4 +1,5 @@
-// The whole path from a probe to its lights, with timings: what the CLI, the Python module and benchmarks call.
+// The whole path from a probe to its lights, with timings: what the CLI, the Python module and benchmarks
+// call.
 #pragma once
 
 #include <string>
@@ -31,7 +32,7 @@ struct BakeResult {
   std::vector<Rect> regions;  // every region in pixels, lit or not (they tile the image)
   std::vector<Cut> cuts;      // in pixels, in the order they were made
   int cellSize = 1;
-  Rgb totalRgb{};             // the probe's integral of L over the sphere
+  Rgb totalRgb{};  // the probe's integral of L over the sphere
   BakeTimings timings;
   std::vector<std::string> notes;
 };

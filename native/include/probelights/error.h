@@ -1,4 +1,5 @@
-// Every failure the library reports to a user: one line that says what is wrong and, where it helps, what to do.
+// Every failure the library reports to a user: one line that says what is wrong and, where it helps, what to
+// do.
 #pragma once
 
 #include <stdexcept>

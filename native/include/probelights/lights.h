@@ -4,27 +4,32 @@
 #include <vector>
 
 #include "probelights/geometry.h"
+#include "probelights/pixel_sums.h"
 #include "probelights/probe.h"
 
 namespace probelights {
 
-// Which pixels' weight places a light inside its region: energy = Y dOmega (the centroid of the region's light),
-// energy2 = Y^2 dOmega (seed 001's "Centroid Formula 2": pulled towards the brightest pixels).
+// Which pixels' weight places a light inside its region: energy = Y dOmega (the centroid of the region's
+// light), energy2 = Y^2 dOmega (seed 001's "Centroid Formula 2": pulled towards the brightest pixels).
 enum class CentroidWeight { Energy, Energy2 };
 
 struct Light {
-  Vec3 direction;          // unit vector towards the light (normalized weighted mean of pixel directions)
-  Rgb rgb{};               // sum over the region of L * dOmega: the irradiance on a surface facing it, W/m^2
-                           // for a Blender sun lamp's strength
-  double solidAngle = 0;   // of the region
+  Vec3 direction;         // unit vector towards the light (normalized weighted mean of pixel directions)
+  Rgb rgb{};              // sum over the region of L * dOmega: the irradiance on a surface facing it, W/m^2
+                          // for a Blender sun lamp's strength
+  double solidAngle = 0;  // of the region
   double angularRadius = 0;  // radians: the cap with the same spread as the region's light (see lights.cpp)
-  Rect rect;               // the region, in pixels
-  double energyShare = 0;  // the region's luminance energy / the probe's
+  Rect rect;                 // the region, in pixels
+  double energyShare = 0;    // the region's luminance energy / the probe's
 };
 
-// One light per region that carries energy, summed exactly over the region's full-resolution pixels.
-// Regions are visited in parallel; each is summed by one thread in a fixed order, so the result is bit-identical
-// whatever the thread count.
+// One light per region that carries energy, from the exact sums over the region's full-resolution pixels.
+std::vector<Light> lightsFromSums(const Probe& probe, const std::vector<Rect>& pixelRegions,
+                                  const std::vector<PixelSums>& sums,
+                                  CentroidWeight centroid = CentroidWeight::Energy);
+
+// The same, summing each region's pixels. Regions are visited in parallel; each is summed by one thread in a
+// fixed order, so the result is bit-identical whatever the thread count.
 std::vector<Light> lightsFromRegions(const Probe& probe, const std::vector<Rect>& pixelRegions,
                                      CentroidWeight centroid = CentroidWeight::Energy);
 

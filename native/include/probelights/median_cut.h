@@ -1,5 +1,5 @@
-// Median cut light probe sampling (Debevec 2005): cut each region across its longer side, measured on the sphere
-// (lat-long width scaled by cos latitude), at the position that leaves equal energy on both sides.
+// Median cut light probe sampling (Debevec 2005): cut each region across its longer side, measured on the
+// sphere (lat-long width scaled by cos latitude), at the position that leaves equal energy on both sides.
 #pragma once
 
 #include "probelights/partition.h"

@@ -1,18 +1,23 @@
-// The working grid every partition decides its cuts on, with summed-area tables of the moments the cut rules need.
+// The working grid every partition decides its cuts on, with summed-area tables of the moments the cut rules
+// need.
 //
 // Working resolution is the accuracy-for-time knob: the grid's cells are blocks of cellSize x cellSize pixels
-// (cellSize 1 = full resolution, the papers' exact algorithm). Each cell holds exact double sums over its pixels of
-//   w = Y * dOmega          (Rec. 709 luminance times the pixel's exact solid angle: the energy median cut balances)
-//   w * d                   (d = the pixel's unit direction: the first moment, for variance and centroids)
-//   lit                     (1 if w > 0: the partition never cuts off a part without light)
+// (cellSize 1 = full resolution, the papers' exact algorithm). Each cell holds exact double sums over its
+// pixels of
+//   w = Y * dOmega          (Rec. 709 luminance times the pixel's exact solid angle: the energy median cut
+//   balances) w * d                   (d = the pixel's unit direction: the first moment, for variance and
+//   centroids) lit                     (1 if w > 0: the partition never cuts off a part without light)
 // so a region's energy and spread are exact whatever the cell size; only where cuts may fall gets coarser.
 // Lights are always summed from the full-resolution pixels of their regions (lights.h).
 #pragma once
 
 #include <cmath>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "probelights/geometry.h"
+#include "probelights/pixel_sums.h"
 #include "probelights/probe.h"
 #include "probelights/summed_area_table.h"
 
@@ -23,9 +28,10 @@ struct RegionMoments {
   Vec3 moment;             // sum of w * d
   long long litCells = 0;  // cells with w > 0 (an exact integer count, so "is anything here" has no rounding)
 
-  // Spread about the centroid on the unit sphere: sum of w |d - c|^2 with c = moment / energy, which expands to
-  // energy - |moment|^2 / energy because |d| = 1. The chord distance on the sphere plays the role of the image-plane
-  // distance d_p in Viriyothai & Debevec 2009, and stays right across the lat-long seam and at the poles.
+  // Spread about the centroid on the unit sphere: sum of w |d - c|^2 with c = moment / energy, which expands
+  // to energy - |moment|^2 / energy because |d| = 1. The chord distance on the sphere plays the role of the
+  // image-plane distance d_p in Viriyothai & Debevec 2009, and stays right across the lat-long seam and at
+  // the poles.
   double variance() const {
     if (energy <= 0) return 0;
     double v = energy - dot(moment, moment) / energy;
@@ -33,8 +39,8 @@ struct RegionMoments {
   }
 };
 
-// How fine the working grid is: "full", "auto" (full up to 2048 pixels wide, then the power-of-two cell size that
-// brings the width to at most 2048), or a target working width in pixels.
+// How fine the working grid is: "full", "auto" (full up to 2048 pixels wide, then the power-of-two cell size
+// that brings the width to at most 2048), or a target working width in pixels.
 struct WorkingResolution {
   enum class Mode { Full, Auto, Width } mode = Mode::Auto;
   int width = 0;
@@ -60,6 +66,11 @@ class MomentTable {
   // The pixels a rectangle of cells covers (the last row and column of cells may be partial).
   Rect toPixels(const Rect& cells) const;
 
+  // Full sums over a rectangle of cells of a coarse grid (cellSize > 1; see hasCellSums()): energy and moment
+  // from the tables, the other light channels from the cells it kept.
+  bool hasCellSums() const { return cells_ != nullptr; }
+  PixelSums cellSums(const Rect& cells) const;
+
   // Exact probe integral per channel and total energy, accumulated while the table was built.
   const Rgb& integral() const { return integral_; }
   double totalEnergy() const { return totalEnergy_; }
@@ -71,6 +82,11 @@ class MomentTable {
   Rgb integral_{};
   double totalEnergy_ = 0;
   long long litCells_ = 0;
+  // What a light needs beyond the tables' channels, per cell of a coarse grid (uninitialized until built).
+  struct CellLight {
+    double rgb[3], solidAngle, energy2, moment2[3];
+  };
+  std::unique_ptr<CellLight[]> cells_;
 };
 
 }  // namespace probelights

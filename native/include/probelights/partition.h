@@ -1,13 +1,14 @@
-// Partitioning the sphere into regions, one light each: the shared driver of median cut and variance minimization.
+// Partitioning the sphere into regions, one light each: the shared driver of median cut and variance
+// minimization.
 //
 // Both algorithms (Debevec 2005; Viriyothai & Debevec 2009) grow a kd-tree of axis-aligned rectangles of the
 // working grid; they differ only in where a region is cut (a CutRule). The driver:
 //  - N = 2^n: n rounds, each splitting every region, as both papers do;
 //  - any other N, and after the rounds if a region could not be split: split the region with the largest
 //    CutRule::priority until N regions carry energy (ties broken by creation order: deterministic).
-// A region is only cut where both parts keep at least one lit cell (a cell with energy), so every region of the
-// partition carries light and every split adds one light. When the probe has fewer lit cells than N, the partition
-// ends with fewer regions and says so in its notes.
+// A region is only cut where both parts keep at least one lit cell (a cell with energy), so every region of
+// the partition carries light and every split adds one light. When the probe has fewer lit cells than N, the
+// partition ends with fewer regions and says so in its notes.
 #pragma once
 
 #include <optional>
@@ -31,8 +32,8 @@ struct Cut {
 // The two parts of region r on either side of a cut at `position` along `axis`.
 std::array<Rect, 2> splitRect(const Rect& r, Axis axis, int position);
 
-// The cut positions along `axis` that leave at least one lit cell on both sides of region `cells`: [first, last],
-// or nullopt if there is none. Both rules choose only among these.
+// The cut positions along `axis` that leave at least one lit cell on both sides of region `cells`: [first,
+// last], or nullopt if there is none. Both rules choose only among these.
 std::optional<std::array<int, 2>> litCutRange(const MomentTable& table, const Rect& cells, Axis axis);
 
 // The smallest p in [lo, hi] with pred(p) true, for a pred that is false then true; hi + 1 if none.
@@ -41,8 +42,10 @@ int firstTrue(int lo, int hi, Pred&& pred) {
   int end = hi + 1;
   while (lo < end) {
     int mid = lo + (end - lo) / 2;
-    if (pred(mid)) end = mid;
-    else lo = mid + 1;
+    if (pred(mid))
+      end = mid;
+    else
+      lo = mid + 1;
   }
   return lo;
 }
@@ -51,15 +54,16 @@ class CutRule {
  public:
   virtual ~CutRule() = default;
   virtual std::string name() const = 0;
-  // Where to cut a region that holds at least two lit cells, at a position within litCutRange; nullopt if none.
+  // Where to cut a region that holds at least two lit cells, at a position within litCutRange; nullopt if
+  // none.
   virtual std::optional<Cut> chooseCut(const MomentTable& table, const Rect& cells) const = 0;
   // Which region to split next when not every region is split in a round: the largest value first.
   virtual double priority(const MomentTable& table, const Rect& cells) const = 0;
 };
 
 struct Partition {
-  std::vector<Rect> regions;   // in cells; together they tile the working grid exactly once
-  std::vector<Cut> cuts;       // in the order they were made
+  std::vector<Rect> regions;  // in cells; together they tile the working grid exactly once
+  std::vector<Cut> cuts;      // in the order they were made
   std::vector<std::string> notes;
 };
 

@@ -1,4 +1,5 @@
-// A picture of a bake, like Figure 1 of Viriyothai & Debevec 2009: the tone-mapped probe, region borders and lights.
+// A picture of a bake, like Figure 1 of Viriyothai & Debevec 2009: the tone-mapped probe, region borders and
+// lights.
 #pragma once
 
 #include <string>

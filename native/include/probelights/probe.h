@@ -1,4 +1,5 @@
-// A light probe: pixels (owned or borrowed) + a projection, validated once so every later stage can trust them.
+// A light probe: pixels (owned or borrowed) + a projection, validated once so every later stage can trust
+// them.
 #pragma once
 
 #include <memory>
@@ -25,9 +26,9 @@ struct ProbeOptions {
 
 // What validation found in the pixels.
 struct PixelReport {
-  long long negativeSamples = 0;    // clamped to 0 (lossy EXR compression produces them)
-  long long nonFiniteSamples = 0;   // NaN or Inf; only non-zero when NonFinitePolicy::Zero let them through
-  std::vector<std::string> notes;   // one line each, for the user: "auto projection: ...", "clamped ..."
+  long long negativeSamples = 0;   // clamped to 0 (lossy EXR compression produces them)
+  long long nonFiniteSamples = 0;  // NaN or Inf; only non-zero when NonFinitePolicy::Zero let them through
+  std::vector<std::string> notes;  // one line each, for the user: "auto projection: ...", "clamped ..."
 };
 
 class Probe {
@@ -45,21 +46,24 @@ class Probe {
   const PixelReport& report() const { return report_; }
   const ImageView& view() const { return view_; }
 
-  // Radiance of pixel (x, y) as RGB: grey replicated, alpha ignored, negatives and (allowed) non-finite read as 0.
+  // Radiance of pixel (x, y) as RGB: grey replicated, alpha ignored, negatives and (allowed) non-finite read
+  // as 0.
   Rgb radiance(int x, int y) const {
     const float* p = view_.pixel(x, y);
     if (view_.channels < 3) {
-      double g = clean(p[0]);
+      double g = sanitize(p[0]);
       return {g, g, g};
     }
-    return {clean(p[0]), clean(p[1]), clean(p[2])};
+    return {sanitize(p[0]), sanitize(p[1]), sanitize(p[2])};
   }
+  // A sample as every stage reads it: negative, NaN and Inf read as 0 (validation has refused NaN/Inf unless
+  // the policy let them through).
+  static double sanitize(float v) { return (v > 0.0f && v <= 3.4028234e38f) ? static_cast<double>(v) : 0.0; }
 
   // The probe's integral of L over the sphere, sum of L * dOmega per channel (reference for energy checks).
   Rgb integral() const;
 
  private:
-  static double clean(float v) { return (v > 0.0f && v <= 3.4028234e38f) ? static_cast<double>(v) : 0.0; }
   void validate(NonFinitePolicy nonFinite);
 
   std::shared_ptr<const Image> owned_;

@@ -7,19 +7,23 @@
 //      phi = 2 pi (0.5 - u), elevation = pi/2 - pi v,
 //      direction = (cos(el) cos(phi), cos(el) sin(phi), sin(el)).
 //    The solid angle of pixel row y is exact: (2 pi / W) (cos(pi y / H) - cos(pi (y + 1) / H)).
-//  - MirrorBall (Blender's "Mirror Ball", Cycles' mirrorball_to_direction): the image is a chrome ball seen by an
-//    orthographic camera looking along +Y; disc coordinates a = 2u - 1 (right = +X), b = 1 - 2v (up = +Z); the
-//    ball normal is n = (a, -s, b) with s = sqrt(1 - a^2 - b^2) and the reflected direction is
+//  - MirrorBall (Blender's "Mirror Ball", Cycles' mirrorball_to_direction): the image is a chrome ball seen
+//  by an
+//    orthographic camera looking along +Y; disc coordinates a = 2u - 1 (right = +X), b = 1 - 2v (up = +Z);
+//    the ball normal is n = (a, -s, b) with s = sqrt(1 - a^2 - b^2) and the reflected direction is
 //      d = (2 s a, 1 - 2 s^2, 2 s b);
-//    the centre sees -Y (back towards the camera), the rim sees +Y. The map is equal-area: the cap of directions
-//    within angle theta of -Y comes from the disc of radius r = sin(theta / 2) and has solid angle 4 pi r^2, so a
-//    pixel's solid angle is exactly 4 x (area of the pixel inside the unit disc), computed in closed form.
-//  - Angular (Debevec's angular map light probe format): same orientation as the mirror ball (centre -Y, right +X,
+//    the centre sees -Y (back towards the camera), the rim sees +Y. The map is equal-area: the cap of
+//    directions within angle theta of -Y comes from the disc of radius r = sin(theta / 2) and has solid angle
+//    4 pi r^2, so a pixel's solid angle is exactly 4 x (area of the pixel inside the unit disc), computed in
+//    closed form.
+//  - Angular (Debevec's angular map light probe format): same orientation as the mirror ball (centre -Y,
+//  right +X,
 //    up +Z) but the angle from the centre direction grows linearly with the radius: theta = pi r, so
 //      d = (sin(theta) a / r, -cos(theta), sin(theta) b / r).
 //    Its area density is dOmega/dA = pi sin(pi r) / r; a pixel's solid angle is integrated by Gauss-Legendre
 //    quadrature, accurate to ~1e-10 relative inside the disc and ~1e-7 on the rim (sub-divided there).
-// Pixels outside the disc of a ball or angular probe have no direction and zero solid angle: they carry nothing.
+// Pixels outside the disc of a ball or angular probe have no direction and zero solid angle: they carry
+// nothing.
 #pragma once
 
 #include <optional>
@@ -33,7 +37,7 @@ namespace probelights {
 
 enum class ProjectionKind { LatLong, MirrorBall, Angular };
 
-std::string toString(ProjectionKind kind);           // "latlong", "mirror-ball", "angular"
+std::string toString(ProjectionKind kind);  // "latlong", "mirror-ball", "angular"
 std::optional<ProjectionKind> parseProjection(const std::string& name);
 
 class Projection {
@@ -53,8 +57,19 @@ class Projection {
   void rowGeometry(int y, int x0, int x1, std::span<Vec3> directions, std::span<double> solidAngles) const;
   double pixelSolidAngle(int x, int y) const;
 
-  // The width and height of a pixel rectangle measured on the sphere, in radians, as median cut compares them:
-  // for a lat-long region the width is scaled by cos(latitude) at the region's middle row (Debevec 2005).
+  // Lat-long only: the per-column cos/sin of phi and the row's cos/sin of elevation and pixel solid angle.
+  struct LatLongRow {
+    const double* cosPhi;
+    const double* sinPhi;
+    double cosEl, sinEl, solidAngle;
+  };
+  LatLongRow latLongRow(int y) const {
+    return {cosPhi_.data(), sinPhi_.data(), cosEl_[y], sinEl_[y], rowSolidAngle_[y]};
+  }
+
+  // The width and height of a pixel rectangle measured on the sphere, in radians, as median cut compares
+  // them: for a lat-long region the width is scaled by cos(latitude) at the region's middle row (Debevec
+  // 2005).
   std::array<double, 2> extentOnSphere(const Rect& pixels) const;
 
  private:
@@ -64,7 +79,8 @@ class Projection {
   std::vector<double> cosPhi_, sinPhi_, cosEl_, sinEl_, rowSolidAngle_;
 };
 
-// Area of the axis-aligned rectangle [a0, a1] x [b0, b1] inside the unit disc, in closed form (exposed for tests).
+// Area of the axis-aligned rectangle [a0, a1] x [b0, b1] inside the unit disc, in closed form (exposed for
+// tests).
 double rectangleAreaInUnitDisc(double a0, double a1, double b0, double b1);
 
 }  // namespace probelights

@@ -3,14 +3,17 @@
 // Precision. A probe with a 1-pixel sun of 1e7 beside a sky of 1e-2 gives per-pixel weights 3.7 and 3.7e-9 at
 // 8192x4096: a float prefix sum (24-bit mantissa) stops growing once it holds the sun, so a sky region's sum,
 // taken as the difference of four prefix values of ~3.7, comes out as noise or 0. The table therefore stores
-// double prefix sums. A rectangle sum S(x1,y1) - S(x0,y1) - S(x1,y0) + S(x0,y0) then carries an error of about
-// eps * (largest prefix value) * (rows + columns of the rectangle), because the rounding done before the
-// rectangle's first row and column is shared by the four terms and cancels: ~1e-15 absolute on that probe,
-// 1e-8 relative to a 10x10 sky region. tests/native/summed_area_table_test.cpp checks this against brute force.
+// double prefix sums. A rectangle sum S(x1,y1) - S(x0,y1) - S(x1,y0) + S(x0,y0) then carries an error of
+// about eps * (largest prefix value) * (rows + columns of the rectangle), because the rounding done before
+// the rectangle's first row and column is shared by the four terms and cancels: ~1e-15 absolute on that
+// probe, 1e-8 relative to a 10x10 sky region. tests/native/summed_area_table_test.cpp checks this against
+// brute force.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -25,15 +28,21 @@ class SummedAreaTable {
 
   SummedAreaTable() = default;
 
-  // rowValues(y, std::span<Values>) fills the `width` values of row y; rows are requested in order 0..height-1.
+  // rowValues(y, std::span<Values>) fills the `width` values of row y; rows are requested in order
+  // 0..height-1.
   template <class RowFn>
   SummedAreaTable(int width, int height, RowFn&& rowValues)
-      : width_(width), height_(height), table_(static_cast<std::size_t>(width + 1) * (height + 1) * K, 0.0) {
+      : width_(width),
+        height_(height),
+        table_(new double[static_cast<std::size_t>(width + 1) * (height + 1) *
+                          K]) {  // not zero-filled: written once
+    std::fill_n(entry(0, 0), (width + 1) * K, 0.0);
     std::vector<Values> row(static_cast<std::size_t>(width));
     for (int y = 0; y < height; ++y) {
       rowValues(y, std::span<Values>(row));
       const double* above = entry(0, y);
       double* out = entry(0, y + 1);
+      std::fill_n(out, K, 0.0);
       Values running{};
       for (int x = 0; x < width; ++x) {
         for (int k = 0; k < K; ++k) {
@@ -61,12 +70,12 @@ class SummedAreaTable {
  private:
   // Entry (x, y) holds the sums over [0, x) x [0, y).
   const double* entry(int x, int y) const {
-    return table_.data() + (static_cast<std::size_t>(y) * (width_ + 1) + x) * K;
+    return table_.get() + (static_cast<std::size_t>(y) * (width_ + 1) + x) * K;
   }
-  double* entry(int x, int y) { return table_.data() + (static_cast<std::size_t>(y) * (width_ + 1) + x) * K; }
+  double* entry(int x, int y) { return table_.get() + (static_cast<std::size_t>(y) * (width_ + 1) + x) * K; }
 
   int width_ = 0, height_ = 0;
-  std::vector<double> table_;
+  std::unique_ptr<double[]> table_;
 };
 
 }  // namespace probelights

@@ -1,7 +1,7 @@
-// Variance minimization light probe sampling (Viriyothai & Debevec 2009): among every cut of a region (both axes,
-// every position), take the one that minimizes the larger of the two parts' sum of L_p d_p^2, each evaluated in
-// O(1) from the moment tables (RegionMoments::variance). Unlike median cut it does not cut through the brighter
-// of two unequal sources; it cuts between them.
+// Variance minimization light probe sampling (Viriyothai & Debevec 2009): among every cut of a region (both
+// axes, every position), take the one that minimizes the larger of the two parts' sum of L_p d_p^2, each
+// evaluated in O(1) from the moment tables (RegionMoments::variance). Unlike median cut it does not cut
+// through the brighter of two unequal sources; it cuts between them.
 #pragma once
 
 #include "probelights/partition.h"

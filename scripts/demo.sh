@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# The main job on the bundled probe: install what is missing, build, bake 16 lights, show the result.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/install-deps.sh
+scripts/build.sh >/dev/null
+mkdir -p out
+build/bin/probelights bake assets/noon_grass_1k.hdr --method variance --lights 16 \
+  -o out/demo_lights.json --preview out/demo_regions.png
+echo
+echo "lights (JSON): out/demo_lights.json"
+echo "regions and lights drawn on the probe: out/demo_regions.png"

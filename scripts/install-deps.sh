@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages probelights needs, only those that are missing. Run as root.
+#   scripts/install-deps.sh          build + run (CLI, library, Python module)
+#   scripts/install-deps.sh --test   also what the tests need (GoogleTest, pytest, Blender)
+set -euo pipefail
+packages=(cmake g++ make pkg-config libopenimageio-dev nlohmann-json3-dev pybind11-dev python3-dev python3-numpy
+          libbenchmark-dev)
+if [[ "${1:-}" == "--test" ]]; then
+  packages+=(libgtest-dev googletest python3-pytest blender)
+fi
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "installing: ${missing[*]}"
+  if [[ $(id -u) -ne 0 ]]; then SUDO=sudo; else SUDO=; fi
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi

@@ -1,0 +1,65 @@
+#!/usr/bin/env bash
+# The CLI as a user runs it: one clear line on stderr and exit code 2 for every bad input; a good bake writes
+# JSON with the documented fields and a preview PNG.
+#   cli_test.sh PROBELIGHTS_BINARY REAL_PROBE
+set -u
+bin=$1 probe=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+passed=0 failed=0
+
+expect_error() {  # name, expected text in the message, args...
+  local name=$1 text=$2; shift 2
+  "$bin" "$@" >"$tmp/out" 2>"$tmp/err"
+  local code=$? lines
+  lines=$(wc -l <"$tmp/err")
+  if [[ $code -eq 2 && $lines -eq 1 ]] && grep -q "^probelights: error: .*$text" "$tmp/err"; then
+    passed=$((passed + 1))
+  else
+    failed=$((failed + 1)); echo "FAIL $name: exit $code, stderr:"; cat "$tmp/err"
+  fi
+}
+
+expect_error "missing file" "no such file" bake "$tmp/nope.exr"
+echo "not an image" >"$tmp/garbage.hdr"
+expect_error "unreadable file" "cannot read probe" bake "$tmp/garbage.hdr"
+expect_error "zero lights" "at least 1" bake "$probe" --lights 0
+expect_error "negative lights" "at least 1" bake "$probe" --lights -3
+expect_error "lights not a number" "whole number" bake "$probe" --lights many
+expect_error "unknown method" "unknown method" bake "$probe" --method magic
+expect_error "unknown option" "unknown option" bake "$probe" --frobnicate
+expect_error "no probe" "no probe" bake
+expect_error "unknown command" "unknown command" frobnicate
+# A 2x2 PFM: square, so auto projection must ask; with a NaN, refused unless --nonfinite=zero.
+printf 'PF\n2 2\n-1.0\n' >"$tmp/square.pfm"
+python3 -c "import struct,sys; sys.stdout.buffer.write(struct.pack('<12f', *([1.0]*12)))" >>"$tmp/square.pfm"
+expect_error "ambiguous projection" "--projection" bake "$tmp/square.pfm"
+printf 'PF\n4 2\n-1.0\n' >"$tmp/nan.pfm"
+python3 -c "import struct,sys; v=[1.0]*24; v[4]=float('nan'); sys.stdout.buffer.write(struct.pack('<24f', *v))" >>"$tmp/nan.pfm"
+expect_error "NaN pixels" "1 NaN/Inf samples" bake "$tmp/nan.pfm"
+
+check() {  # name, command
+  if eval "$2"; then passed=$((passed + 1)); else failed=$((failed + 1)); echo "FAIL $1"; fi
+}
+check "nonfinite zero proceeds" "'$bin' bake '$tmp/nan.pfm' --nonfinite=zero --lights 2 -q -o '$tmp/nan.json'"
+check "bake writes JSON and a preview" \
+  "'$bin' bake '$probe' --lights 8 --method median-cut -o '$tmp/l.json' --preview '$tmp/p.png' >'$tmp/summary'"
+check "JSON has the documented fields and conserves energy" "python3 - '$tmp/l.json' <<'PY'
+import json, sys, math
+d = json.load(open(sys.argv[1]))
+assert set(d['source']) >= {'path', 'width', 'height', 'projection'}, d['source']
+assert d['method'] == 'median-cut' and len(d['lights']) == 8
+for l in d['lights']:
+    assert set(l) >= {'direction', 'rgb', 'solid_angle', 'angular_radius', 'rect', 'energy_share'}
+    assert abs(math.hypot(*l['direction']) - 1) < 1e-9
+assert set(d['timings_ms']) >= {'load', 'tables', 'partition'}
+for k in range(3):
+    s = sum(l['rgb'][k] for l in d['lights'])
+    assert abs(s - d['total_rgb'][k]) <= 1e-6 * d['total_rgb'][k], (s, d['total_rgb'])
+PY"
+check "preview is a PNG" "head -c 8 '$tmp/p.png' | od -An -c | grep -q 'P   N   G'"
+check "summary shows timings and energy" "grep -q 'time (ms)' '$tmp/summary' && grep -q 'max rel. diff' '$tmp/summary'"
+check "JSON to stdout" "'$bin' bake '$probe' --lights 2 -o - | python3 -c 'import json,sys; json.load(sys.stdin)'"
+
+echo "$passed passed, $failed failed"
+[[ $failed -eq 0 ]]
