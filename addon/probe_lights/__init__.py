@@ -1,0 +1,34 @@
+"""Probe Lights: bake the world's HDRI into sun or point lights that light the scene the way the world does.
+
+Layout (glTF-Blender-IO style): rules that need no bpy (world_graph.py, conversion.py) apart from Blender glue
+(world_image.py, world_mix.py, light_objects.py, operators.py, properties.py, ui.py). The sampling itself is the
+native module _probelights, built into this package.
+"""
+
+bl_info = {
+    "name": "Probe Lights",
+    "author": "probelights developers",
+    "version": (0, 1, 0),
+    "blender": (3, 4, 0),
+    "location": "Properties > World > Probe Lights; 3D View > Sidebar > Probe Lights",
+    "description": "Bake the world's HDRI into sun or point lights with matching colour, strength and shadows",
+    "category": "Lighting",
+}
+
+import bpy  # noqa: E402
+
+from . import operators, properties, ui  # noqa: E402
+
+classes = properties.classes + operators.classes + ui.classes
+
+
+def register():
+    for cls in classes:
+        bpy.utils.register_class(cls)
+    properties.register()
+
+
+def unregister():
+    properties.unregister()
+    for cls in reversed(classes):
+        bpy.utils.unregister_class(cls)

@@ -1,0 +1,118 @@
+"""Operators: bake the world to lights, and restore the world (and remove the lights)."""
+
+import time
+
+import bpy
+import numpy as np
+
+from . import _probelights
+from .light_objects import make_lights, remove_lights
+from .properties import SETTING_NAMES, bake_settings
+from .world_graph import find_probe
+from .world_image import ProbeError, image_pixels, render_world
+from .world_mix import insert_mix, remove_mix
+
+RENDER_WIDTH = 1024  # lat-long width a world without a readable image is rendered at
+
+
+def _rendered_probe(world):
+    """Renders a copy of the world without our mix (so a re-bake sees the world as the user made it)."""
+    copy = world.copy()
+    try:
+        remove_mix(copy)
+        return render_world(copy, RENDER_WIDTH)
+    finally:
+        bpy.data.worlds.remove(copy)
+
+
+def bake_world(context, settings):
+    """Bakes the scene's world with `settings` (anything with the bake_settings() attributes). Returns a summary."""
+    scene = context.scene
+    world = scene.world
+    if world is None:
+        raise ProbeError("the scene has no world: add one in World properties")
+    start = time.perf_counter()
+    wm = context.window_manager
+    wm.progress_begin(0, 100)
+    try:
+        try:
+            source = find_probe(world)
+        except ValueError as e:
+            raise ProbeError(str(e))
+        if source.image is not None:
+            pixels, projection = image_pixels(source.image), source.projection
+            described = "image '%s' (%s)" % (source.image.name, projection)
+        else:
+            wm.progress_update(10)
+            pixels, projection = _rendered_probe(world), "latlong"
+            described = "rendered world (%s)" % source.render_reason
+        wm.progress_update(50)
+        baked = _probelights.bake(pixels, projection=projection, method=settings.method, lights=settings.count,
+                                  resolution=settings.resolution)
+        wm.progress_update(80)
+        remove_lights(scene)
+        lights = make_lights(scene, baked, source.world_from_probe, source.strength, settings.light_type,
+                             settings.soft_shadows, settings.distance, lights_diffuse=settings.replace_diffuse,
+                             lights_glossy=settings.replace_reflections)
+        insert_mix(world, keep_background=not settings.replace_background,
+                   keep_reflections=not settings.replace_reflections, keep_diffuse=not settings.replace_diffuse)
+    finally:
+        wm.progress_end()
+    total = float(np.dot(baked["total_rgb"], (0.2126, 0.7152, 0.0722)))
+    captured = float(np.sum(baked["rgb"] @ np.array([0.2126, 0.7152, 0.0722])))
+    return {"count": len(lights), "energy": 100.0 * captured / total if total > 0 else 0.0,
+            "ms": 1000.0 * (time.perf_counter() - start), "source": described, "notes": list(baked["notes"])}
+
+
+class PROBE_LIGHTS_OT_bake(bpy.types.Operator):
+    """Turn the world's light into lamps that light the scene the same way; the world keeps only what it still shows"""
+
+    bl_idname = "probe_lights.bake"
+    bl_label = "Bake probe to lights"
+    bl_options = {"REGISTER", "UNDO"}
+    __annotations__ = bake_settings()
+
+    def invoke(self, context, event):
+        settings = context.scene.probe_lights
+        for name in SETTING_NAMES:
+            setattr(self, name, getattr(settings, name))
+        return self.execute(context)
+
+    def execute(self, context):
+        try:
+            summary = bake_world(context, self)
+        except (ProbeError, _probelights.Error) as e:
+            self.report({"ERROR"}, str(e))
+            return {"CANCELLED"}
+        settings = context.scene.probe_lights
+        for name in SETTING_NAMES:
+            setattr(settings, name, getattr(self, name))
+        settings.last_count = summary["count"]
+        settings.last_energy = summary["energy"]
+        settings.last_ms = summary["ms"]
+        settings.last_source = summary["source"]
+        settings.last_notes = "; ".join(summary["notes"])
+        self.report({"INFO"}, "Baked %d lights from %s in %.0f ms" % (summary["count"], summary["source"], summary["ms"]))
+        return {"FINISHED"}
+
+
+class PROBE_LIGHTS_OT_restore(bpy.types.Operator):
+    """Remove the baked lights and bring the world back exactly as it was before the bake"""
+
+    bl_idname = "probe_lights.restore"
+    bl_label = "Restore world"
+    bl_options = {"REGISTER", "UNDO"}
+
+    def execute(self, context):
+        scene = context.scene
+        removed = remove_lights(scene)
+        restored = remove_mix(scene.world)
+        scene.probe_lights.last_count = 0
+        if not removed and not restored:
+            self.report({"INFO"}, "Nothing to restore: the world was not baked")
+        else:
+            self.report({"INFO"}, "Removed %d lights%s" % (removed, ", restored the world" if restored else ""))
+        return {"FINISHED"}
+
+
+classes = (PROBE_LIGHTS_OT_bake, PROBE_LIGHTS_OT_restore)

@@ -1,0 +1,57 @@
+"""Settings the panels show (per scene) and what the last bake measured."""
+
+import bpy
+from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, StringProperty
+
+METHODS = [("variance", "Variance minimization", "Cut where the light's spread is least (Viriyothai & Debevec 2009)"),
+           ("median-cut", "Median cut", "Equal-energy regions (Debevec 2005)")]
+LIGHT_TYPES = [("SUN", "Sun", "Sun lamps: parallel light with soft shadows as wide as each region"),
+               ("POINT", "Point", "Point lamps on a sphere around the origin")]
+RESOLUTIONS = [("auto", "Auto", "Cuts on a grid at most 2048 pixels wide (exact lights either way)"),
+               ("full", "Full", "Cuts at full resolution, as the papers (slower for 4K and larger probes)"),
+               ("512", "512", "Cuts on a 512-pixel-wide grid: fastest")]
+SETTING_NAMES = ("count", "method", "light_type", "resolution", "soft_shadows", "distance", "replace_diffuse",
+                 "replace_reflections", "replace_background")
+
+
+def bake_settings():
+    """The settings a bake takes: shared by the scene's settings (panels) and the operator (redo panel)."""
+    return {
+        "count": IntProperty(name="Lights", description="How many lights to make", default=64, min=1,
+                             soft_max=1024, max=4096),
+        "method": EnumProperty(name="Method", items=METHODS, default="variance"),
+        "light_type": EnumProperty(name="Light type", items=LIGHT_TYPES, default="SUN"),
+        "resolution": EnumProperty(name="Working resolution", items=RESOLUTIONS, default="auto"),
+        "soft_shadows": BoolProperty(name="Soft shadows", default=True,
+                                     description="Give each sun the angle of its region's light"),
+        "distance": FloatProperty(name="Distance", default=10.0, min=0.01, unit="LENGTH",
+                                  description="How far from the origin point lights are placed"),
+        "replace_diffuse": BoolProperty(name="Diffuse + shadows", default=True,
+                                        description="Lights give diffuse light and shadows; the world no longer does"),
+        "replace_reflections": BoolProperty(name="Reflections", default=False,
+                                            description="Lights give reflections; the world no longer does"),
+        "replace_background": BoolProperty(name="Background", default=False,
+                                           description="Hide the world from the camera"),
+    }
+
+
+class ProbeLightsSettings(bpy.types.PropertyGroup):
+    __annotations__ = {
+        **bake_settings(),
+        "last_count": IntProperty(default=0),
+        "last_energy": FloatProperty(default=0.0, subtype="PERCENTAGE"),
+        "last_ms": FloatProperty(default=0.0),
+        "last_source": StringProperty(default=""),
+        "last_notes": StringProperty(default=""),
+    }
+
+
+classes = (ProbeLightsSettings,)
+
+
+def register():
+    bpy.types.Scene.probe_lights = bpy.props.PointerProperty(type=ProbeLightsSettings)
+
+
+def unregister():
+    del bpy.types.Scene.probe_lights

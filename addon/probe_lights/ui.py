@@ -1,0 +1,64 @@
+"""Panels: World properties and the 3D viewport sidebar show the same controls."""
+
+import bpy
+
+from .world_mix import has_mix
+
+
+def draw_panel(layout, context):
+    settings = context.scene.probe_lights
+    col = layout.column(align=True)
+    col.prop(settings, "method")
+    col.prop(settings, "count")
+    col.prop(settings, "light_type")
+    if settings.light_type == "SUN":
+        col.prop(settings, "soft_shadows")
+    else:
+        col.prop(settings, "distance")
+    col.prop(settings, "resolution")
+    box = layout.box()
+    box.label(text="Replace with lights:")
+    row = box.row(align=True)
+    row.prop(settings, "replace_diffuse", toggle=True)
+    row.prop(settings, "replace_reflections", toggle=True)
+    row.prop(settings, "replace_background", toggle=True)
+    row = layout.row(align=True)
+    row.scale_y = 1.4
+    row.operator("probe_lights.bake", icon="LIGHT_SUN")
+    sub = row.row(align=True)
+    sub.enabled = has_mix(context.scene.world) or settings.last_count > 0
+    sub.operator("probe_lights.restore", icon="LOOP_BACK")
+    if settings.last_count:
+        col = layout.column(align=True)
+        col.label(text="%d lights, %.1f %% of the energy, %.0f ms" % (settings.last_count, settings.last_energy,
+                                                                    settings.last_ms))
+        col.label(text="From " + settings.last_source)
+        if settings.last_notes:
+            col.label(text=settings.last_notes, icon="INFO")
+
+
+class PROBE_LIGHTS_PT_world(bpy.types.Panel):
+    bl_label = "Probe Lights"
+    bl_space_type = "PROPERTIES"
+    bl_region_type = "WINDOW"
+    bl_context = "world"
+
+    @classmethod
+    def poll(cls, context):
+        return context.scene is not None
+
+    def draw(self, context):
+        draw_panel(self.layout, context)
+
+
+class PROBE_LIGHTS_PT_view3d(bpy.types.Panel):
+    bl_label = "Probe Lights"
+    bl_space_type = "VIEW_3D"
+    bl_region_type = "UI"
+    bl_category = "Probe Lights"
+
+    def draw(self, context):
+        draw_panel(self.layout, context)
+
+
+classes = (PROBE_LIGHTS_PT_world, PROBE_LIGHTS_PT_view3d)

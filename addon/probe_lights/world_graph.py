@@ -1,0 +1,215 @@
+"""Finding the light probe in a world's node tree: rules only, no bpy.
+
+Works on anything shaped like Blender's node API (bl_idname, inputs, outputs, links, node_tree), so it is tested with
+plain Python objects as well as in Blender. The result says either where the probe's pixels are and how they are
+turned before they light the world, or why the world has to be rendered to a lat-long image instead.
+
+What is followed, from the active World Output's Surface input upstream:
+  Background (strength: a constant)  <- Color: Environment Texture (lat-long or mirror ball, an image)
+      <- Vector: any chain of Mapping (Point, Texture, Vector, Normal) and Vector Rotate nodes
+         <- Texture Coordinate "Generated" (or nothing: the view direction)
+through Reroutes, node groups (in and out of them) and the add-on's own Light Path mix. Anything else (Sky Texture,
+mixes of backgrounds, colour ramps on the image, a plain colour, ...) is rendered.
+"""
+
+from dataclasses import dataclass, field
+import math
+
+MIX_TAG = "probe_lights_mix"  # custom property on the Mix Shader the add-on inserts (see world_mix.py)
+
+
+@dataclass
+class ProbeSource:
+    image: object = None              # the Blender image to read, or None when the world must be rendered
+    projection: str = "latlong"       # "latlong" | "mirror-ball"
+    world_from_probe: list = field(default_factory=lambda: [[1, 0, 0], [0, 1, 0], [0, 0, 1]])
+    strength: float = 1.0
+    render_reason: str = ""           # why the world is rendered instead of read ("" when image is set)
+    image_node: object = None
+
+
+def euler_xyz_matrix(rx, ry, rz):
+    """Blender's Euler XYZ rotation (mathutils, Mapping and Vector Rotate nodes): R = Rz @ Ry @ Rx."""
+    cx, sx, cy, sy, cz, sz = math.cos(rx), math.sin(rx), math.cos(ry), math.sin(ry), math.cos(rz), math.sin(rz)
+    return [
+        [cy * cz, sx * sy * cz - cx * sz, cx * sy * cz + sx * sz],
+        [cy * sz, sx * sy * sz + cx * cz, cx * sy * sz - sx * cz],
+        [-sy, sx * cy, cx * cy],
+    ]
+
+
+def axis_angle_matrix(axis, angle):
+    x, y, z = axis
+    n = math.sqrt(x * x + y * y + z * z)
+    if n == 0:
+        return [[1, 0, 0], [0, 1, 0], [0, 0, 1]]
+    x, y, z = x / n, y / n, z / n
+    c, s, t = math.cos(angle), math.sin(angle), 1 - math.cos(angle)
+    return [
+        [t * x * x + c, t * x * y - s * z, t * x * z + s * y],
+        [t * x * y + s * z, t * y * y + c, t * y * z - s * x],
+        [t * x * z - s * y, t * y * z + s * x, t * z * z + c],
+    ]
+
+
+def matmul(a, b):
+    return [[sum(a[i][k] * b[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
+
+
+def transpose(a):
+    return [[a[j][i] for j in range(3)] for i in range(3)]
+
+
+class _Render(Exception):
+    """The world cannot be read as an image; the message says why (shown to the user)."""
+
+
+def is_our_mix(node):
+    try:
+        return bool(node.get(MIX_TAG))
+    except (AttributeError, TypeError):
+        return False
+
+
+def _linked_output(socket, groups):
+    """The output socket feeding `socket`, through reroutes and node groups; None if unlinked.
+
+    `groups` is the stack of group nodes entered so far (to leave a group through its Group Input)."""
+    while True:
+        links = [l for l in socket.links if not getattr(l, "is_muted", False)] if socket.is_linked else []
+        if not links:
+            return None
+        out = links[0].from_socket
+        node = links[0].from_node
+        kind = node.bl_idname
+        if kind == "NodeReroute":
+            socket = node.inputs[0]
+        elif kind == "ShaderNodeGroup":
+            if node.node_tree is None:
+                raise _Render("a node group without a tree")
+            outputs = [n for n in node.node_tree.nodes if n.bl_idname == "NodeGroupOutput"]
+            active = [n for n in outputs if getattr(n, "is_active_output", True)] or outputs
+            if not active:
+                raise _Render("node group '%s' has no Group Output" % node.node_tree.name)
+            socket = _input_by_identifier(active[0], out.identifier)
+            groups = groups + [node]
+        elif kind == "NodeGroupInput":
+            if not groups:
+                raise _Render("a Group Input outside of a group")
+            socket = _input_by_identifier(groups[-1], out.identifier)
+            groups = groups[:-1]
+        else:
+            if getattr(node, "mute", False):
+                raise _Render("muted node '%s'" % node.name)
+            return out, groups
+
+
+def _input_by_identifier(node, identifier):
+    for s in node.inputs:
+        if s.identifier == identifier:
+            return s
+    raise _Render("node '%s' has no input '%s'" % (node.name, identifier))
+
+
+def _is_zero(v, tol=1e-9):
+    return all(abs(c) <= tol for c in v)
+
+
+def _vector_chain(socket, groups):
+    """The rotation A with lookup direction = A @ world direction, for the Environment Texture's Vector input."""
+    a = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]
+    while True:
+        found = _linked_output(socket, groups)
+        if found is None:
+            if socket.node.bl_idname == "ShaderNodeTexEnvironment":
+                return a  # an unlinked Vector on the texture is the view direction
+            raise _Render("an unlinked vector input on '%s'" % socket.node.name)
+        out, groups = found
+        node = out.node
+        kind = node.bl_idname
+        if kind == "ShaderNodeTexCoord":
+            if out.identifier != "Generated":
+                raise _Render("texture coordinates '%s' (only Generated is read directly)" % out.name)
+            return a
+        if kind == "ShaderNodeMapping":
+            r = _constant(node.inputs["Rotation"], "Mapping rotation")
+            s = _constant(node.inputs["Scale"], "Mapping scale") if "Scale" in node.inputs else (1, 1, 1)
+            if max(s) - min(s) > 1e-6 * max(abs(c) for c in s) or min(s) <= 0:
+                raise _Render("a non-uniform or negative Mapping scale")
+            if node.vector_type in ("POINT", "TEXTURE") and not _is_zero(_constant(node.inputs["Location"], "Mapping location")):
+                raise _Render("a Mapping location (it moves directions off the sphere)")
+            m = euler_xyz_matrix(*r)
+            # Point, Vector, Normal: out = R @ v (scale is uniform, directions are normalized);
+            # Texture is the inverse transform: out = R^T @ v.
+            a = matmul(transpose(m) if node.vector_type == "TEXTURE" else m, a)
+            socket = node.inputs["Vector"]
+        elif kind == "ShaderNodeVectorRotate":
+            if not _is_zero(_constant(node.inputs["Center"], "Vector Rotate center")):
+                raise _Render("a Vector Rotate center off the origin")
+            t = node.rotation_type
+            if t == "EULER_XYZ":
+                m = euler_xyz_matrix(*_constant(node.inputs["Rotation"], "Vector Rotate rotation"))
+            else:
+                angle = _constant(node.inputs["Angle"], "Vector Rotate angle")
+                axis = {"X_AXIS": (1, 0, 0), "Y_AXIS": (0, 1, 0), "Z_AXIS": (0, 0, 1)}.get(t)
+                if axis is None:
+                    axis = _constant(node.inputs["Axis"], "Vector Rotate axis")
+                m = axis_angle_matrix(axis, angle)
+            a = matmul(transpose(m) if node.invert else m, a)
+            socket = node.inputs["Vector"]
+        else:
+            raise _Render("the texture's vector comes from a %s node" % kind.replace("ShaderNode", ""))
+
+
+def _constant(socket, what):
+    if socket.is_linked:
+        raise _Render("%s is driven by other nodes" % what)
+    v = socket.default_value
+    try:
+        return tuple(float(c) for c in v)
+    except TypeError:
+        return float(v)
+
+
+def find_probe(world):
+    """Where the world's light comes from: a ProbeSource (image set, or render_reason set)."""
+    try:
+        return _find(world)
+    except _Render as why:
+        return ProbeSource(render_reason=str(why))
+
+
+def _find(world):
+    if world is None:
+        raise ValueError("the scene has no world")
+    if not world.use_nodes or world.node_tree is None:
+        raise _Render("the world uses a plain colour, not nodes")
+    outputs = [n for n in world.node_tree.nodes if n.bl_idname == "ShaderNodeOutputWorld"]
+    active = [n for n in outputs if n.is_active_output] or outputs
+    if not active:
+        raise _Render("the world has no World Output")
+    found = _linked_output(active[0].inputs["Surface"], [])
+    while found is not None and is_our_mix(found[0].node):
+        found = _linked_output(found[0].node.inputs[2], found[1])  # the original surface behind our mix
+    if found is None:
+        raise _Render("nothing is connected to the World Output")
+    out, groups = found
+    bg = out.node
+    if bg.bl_idname != "ShaderNodeBackground":
+        raise _Render("the world surface is a %s, not a Background" % bg.bl_idname.replace("ShaderNode", ""))
+    strength = _constant(bg.inputs["Strength"], "Background strength")
+    colour = _linked_output(bg.inputs["Color"], groups)
+    if colour is None:
+        raise _Render("the background is a plain colour")
+    out, groups = colour
+    tex = out.node
+    if tex.bl_idname != "ShaderNodeTexEnvironment" or out.identifier != "Color":
+        raise _Render("the background colour comes from a %s" % tex.bl_idname.replace("ShaderNode", ""))
+    if tex.image is None:
+        raise ValueError("the world's Environment Texture '%s' has no image" % tex.name)
+    projection = {"EQUIRECTANGULAR": "latlong", "MIRROR_BALL": "mirror-ball"}.get(tex.projection)
+    if projection is None:
+        raise _Render("environment projection %s" % tex.projection)
+    lookup_from_world = _vector_chain(tex.inputs["Vector"], groups)
+    return ProbeSource(image=tex.image, projection=projection, world_from_probe=transpose(lookup_from_world),
+                       strength=strength, image_node=tex)

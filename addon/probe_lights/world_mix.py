@@ -1,0 +1,114 @@
+"""Never light a scene twice: a Light Path mix in the world tree that keeps the world only for the effects the
+user keeps from it (camera background, reflections, diffuse), and a restore that takes it out again exactly.
+
+    [original surface] ----------------------- Shader (fac 1)
+                                                             Mix Shader --> World Output
+    [Background, strength 0] ----------------- Shader (fac 0)
+    Light Path: Is Camera / Is Glossy / Is Diffuse Ray -> (Maximum) -> Fac
+
+Every node it adds carries the custom property "probe_lights"; the mix also carries world_graph.MIX_TAG. Nothing
+else in the tree is touched, so removing the tagged nodes and linking the original surface back restores it.
+In EEVEE (Legacy) the world lights diffuse and reflections through one probe, rendered as a non-camera ray: keeping
+only reflections from the world is a Cycles feature; EEVEE then gets no world lighting at all (lights only).
+"""
+
+from .world_graph import MIX_TAG
+
+NODE_TAG = "probe_lights"
+ENABLED_NODES_TAG = "probe_lights_enabled_nodes"
+
+
+def _tagged(tree):
+    return [n for n in tree.nodes if n.get(NODE_TAG)]
+
+
+def has_mix(world):
+    return world is not None and world.node_tree is not None and any(n.get(MIX_TAG) for n in world.node_tree.nodes)
+
+
+def _active_output(tree):
+    outputs = [n for n in tree.nodes if n.bl_idname == "ShaderNodeOutputWorld"]
+    active = [n for n in outputs if n.is_active_output] or outputs
+    return active[0] if active else None
+
+
+def insert_mix(world, keep_background=True, keep_reflections=True, keep_diffuse=False):
+    """Routes the world's surface through the mix; replaces an earlier mix of ours."""
+    remove_mix(world)
+    if not world.use_nodes:
+        # A plain-colour world: give it the node tree Blender would, remembering to switch it back on restore.
+        colour = tuple(world.color) + (1.0,)
+        world.use_nodes = True
+        world[ENABLED_NODES_TAG] = 1
+        bg = next((n for n in world.node_tree.nodes if n.bl_idname == "ShaderNodeBackground"), None)
+        if bg is not None:
+            bg.inputs["Color"].default_value = colour
+    tree = world.node_tree
+    out = _active_output(tree)
+    if out is None:
+        out = tree.nodes.new("ShaderNodeOutputWorld")
+        out[NODE_TAG] = 1
+    surface = out.inputs["Surface"]
+    original = surface.links[0].from_socket if surface.is_linked else None
+
+    def add(kind, dx, dy):
+        node = tree.nodes.new(kind)
+        node[NODE_TAG] = 1
+        node.location = (out.location.x + dx, out.location.y + dy)
+        node.label = "Probe Lights"
+        return node
+
+    mix = add("ShaderNodeMixShader", 0, 0)
+    mix[MIX_TAG] = 1
+    out.location.x += 220  # make room; restored below
+    out[NODE_TAG + "_moved"] = 1
+    dark = add("ShaderNodeBackground", -220, -160)
+    dark.inputs["Strength"].default_value = 0.0
+    dark.inputs["Color"].default_value = (0, 0, 0, 1)
+    tree.links.new(dark.outputs["Background"], mix.inputs[1])
+    if original is not None:
+        tree.links.new(original, mix.inputs[2])
+    kept = [name for name, keep in (("Is Camera Ray", keep_background), ("Is Glossy Ray", keep_reflections),
+                                    ("Is Diffuse Ray", keep_diffuse)) if keep]
+    if kept:
+        path = add("ShaderNodeLightPath", -440, 200)
+        fac = path.outputs[kept[0]]
+        for i, name in enumerate(kept[1:]):
+            m = add("ShaderNodeMath", -220, 200 - 120 * i)
+            m.operation = "MAXIMUM"
+            tree.links.new(fac, m.inputs[0])
+            tree.links.new(path.outputs[name], m.inputs[1])
+            fac = m.outputs[0]
+        tree.links.new(fac, mix.inputs["Fac"])
+    else:
+        mix.inputs["Fac"].default_value = 0.0
+    tree.links.new(mix.outputs["Shader"], surface)
+    return mix
+
+
+def remove_mix(world):
+    """Takes the add-on's nodes out and links the original surface back. True if there was anything to remove."""
+    if world is None or world.node_tree is None:
+        return False
+    tree = world.node_tree
+    mixes = [n for n in tree.nodes if n.get(MIX_TAG)]
+    if not mixes and not _tagged(tree):
+        return False
+    out = _active_output(tree)
+    original = None
+    for mix in mixes:
+        shader = mix.inputs[2]
+        if shader.is_linked:
+            original = shader.links[0].from_socket
+    for node in _tagged(tree):
+        tree.nodes.remove(node)
+    if out is not None:
+        if out.get(NODE_TAG + "_moved"):
+            out.location.x -= 220
+            del out[NODE_TAG + "_moved"]
+        if original is not None:
+            tree.links.new(original, out.inputs["Surface"])
+    if world.get(ENABLED_NODES_TAG):
+        del world[ENABLED_NODES_TAG]
+        world.use_nodes = False
+    return True

@@ -1,0 +1,272 @@
+"""The add-on as a user meets it: installed from the zip into a fresh profile, baking real probes through every
+kind of world, re-baking, restoring, undoing, and refusing bad worlds with a one-line report."""
+
+import glob
+import math
+import os
+import sys
+
+import bpy
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import harness  # noqa: E402
+
+ARGS = harness.args()
+addon = harness.install_addon(ARGS.zip)
+from probe_lights import _probelights, light_objects, world_mix  # noqa: E402
+
+LUM = np.array([0.2126, 0.7152, 0.0722])
+
+
+def bake(**settings):
+    result = bpy.ops.probe_lights.bake("EXEC_DEFAULT", **settings)
+    assert result == {"FINISHED"}, result
+    return light_objects.baked_lights(bpy.context.scene)
+
+
+def irradiance(obj):
+    """What a baked sun gives a facing surface, per channel (W/m^2)."""
+    return np.array(obj.data.color) * obj.data.energy
+
+
+def sun_direction(obj):
+    return np.array(obj.matrix_world.to_3x3().col[2])
+
+
+def real_probes():
+    files = sorted(glob.glob(os.path.join(ARGS.shared, "hdri", "*.hdr")) + glob.glob(os.path.join(ARGS.shared, "hdri", "*.exr")))
+    files += sorted(glob.glob(os.path.join(ARGS.studiolights, "*.exr")))
+    assert files, "no probes found"
+    return files
+
+
+def test_register_unregister():
+    assert hasattr(bpy.types.Scene, "probe_lights") and hasattr(bpy.ops.probe_lights, "bake")
+    bpy.ops.preferences.addon_disable(module="probe_lights")
+    assert not hasattr(bpy.types.Scene, "probe_lights")
+    assert not hasattr(bpy.types, "PROBE_LIGHTS_PT_world")
+    bpy.ops.preferences.addon_enable(module="probe_lights")
+    assert hasattr(bpy.types.Scene, "probe_lights") and hasattr(bpy.types, "PROBE_LIGHTS_PT_world")
+
+
+def test_real_probes_bake_with_their_energy():
+    for path in real_probes():
+        harness.empty_scene()
+        image = bpy.data.images.load(path)
+        harness.env_world(image, strength=1.5)
+        lights = bake(count=16)
+        assert len(lights) == 16, (path, len(lights))
+        # Reference: the same pixels Blender holds, through the module (Blender and OpenImageIO decode RGBE .hdr
+        # files ~0.4 % apart: Radiance's +0.5 mantissa rounding), and the file through OpenImageIO within 1 %.
+        pixels = np.empty(image.size[0] * image.size[1] * image.channels, np.float32)
+        image.pixels.foreach_get(pixels)
+        pixels = pixels.reshape(image.size[1], image.size[0], image.channels)[::-1]
+        reference = _probelights.bake(pixels, lights=1)["total_rgb"]
+        from_file = _probelights.bake_file(path, lights=1)["total_rgb"]
+        assert (np.abs(from_file - reference) / reference).max() < 1e-2, (from_file, reference)
+        total = sum(irradiance(o) for o in lights)
+        rel = np.abs(total - 1.5 * reference) / (1.5 * reference)
+        assert rel.max() < 1e-5, (path, total, reference)
+        for o in lights:
+            assert o.data.type == "SUN" and 0 <= o.data.angle <= math.pi and o.data.energy >= 0
+        print("  %-32s 16 suns, energy matches to %.1e, brightest %.0f%%" % (
+            os.path.basename(path), rel.max(), 100 * max(irradiance(o) @ LUM for o in lights) / (total @ LUM)))
+
+
+def bright_spot_world(direction_pixel, size=(128, 64), projection="EQUIRECTANGULAR", **world):
+    w, h = size
+    a = np.full((h, w, 3), 0.01, np.float32)
+    x, y = direction_pixel
+    a[y, x] = 1000.0
+    img = harness.float_image("spot", a)
+    return harness.env_world(img, projection=projection, **world)
+
+
+def latlong_direction(x, y, w, h):
+    phi, el = 2 * math.pi * (0.5 - (x + 0.5) / w), math.pi / 2 - math.pi * (y + 0.5) / h
+    return np.array([math.cos(el) * math.cos(phi), math.cos(el) * math.sin(phi), math.sin(el)])
+
+
+def brightest(lights):
+    return max(lights, key=lambda o: irradiance(o) @ LUM)
+
+
+def test_strength_and_rotation_carry_into_the_lights():
+    harness.empty_scene()
+    bright_spot_world((40, 20), strength=2.0)
+    plain = brightest(bake(count=8))
+    d0, e0 = sun_direction(plain), irradiance(plain)
+    assert harness.angle_deg(d0, latlong_direction(40, 20, 128, 64)) < 0.5
+    harness.empty_scene()
+    rot = (0.3, -0.5, 1.2)
+    bright_spot_world((40, 20), strength=2.0, rotation=rot)
+    turned = brightest(bake(count=8))
+    # The texture looks up R @ (world direction), so the spot now shines from R^T @ d0.
+    from probe_lights.world_graph import euler_xyz_matrix
+    expected = np.array(euler_xyz_matrix(*rot)).T @ d0
+    assert harness.angle_deg(sun_direction(turned), expected) < 0.5, (sun_direction(turned), expected)
+    assert np.allclose(irradiance(turned), e0, rtol=1e-5)
+
+
+def test_node_group_and_reroute():
+    harness.empty_scene()
+    world = bright_spot_world((100, 10))
+    nt = world.node_tree
+    env = next(n for n in nt.nodes if n.bl_idname == "ShaderNodeTexEnvironment")
+    bg = nt.nodes["Background"]
+    # Move the environment texture into a group whose output feeds a reroute into the background.
+    group = bpy.data.node_groups.new("env group", "ShaderNodeTree")
+    if hasattr(group, "interface"):
+        group.interface.new_socket("Color", in_out="OUTPUT", socket_type="NodeSocketColor")
+    else:
+        group.outputs.new("NodeSocketColor", "Color")
+    inner = group.nodes.new("ShaderNodeTexEnvironment")
+    inner.image = env.image
+    out = group.nodes.new("NodeGroupOutput")
+    group.links.new(inner.outputs["Color"], out.inputs[0])
+    nt.nodes.remove(env)
+    gnode = nt.nodes.new("ShaderNodeGroup")
+    gnode.node_tree = group
+    reroute = nt.nodes.new("NodeReroute")
+    nt.links.new(gnode.outputs[0], reroute.inputs[0])
+    nt.links.new(reroute.outputs[0], bg.inputs["Color"])
+    lights = bake(count=4)
+    assert "image 'spot'" in bpy.context.scene.probe_lights.last_source, bpy.context.scene.probe_lights.last_source
+    assert harness.angle_deg(sun_direction(brightest(lights)), latlong_direction(100, 10, 128, 64)) < 0.5
+
+
+def test_mirror_ball_image():
+    # A mirror ball whose only bright spot is where Blender's mirror-ball mapping sees direction d.
+    n = 128
+    d = np.array([0.6, -0.3, 0.74])
+    d /= np.linalg.norm(d)
+    # Cycles' direction_to_mirrorball: d.y -= 1; d /= 2 sqrt(-0.5 d.y); u = (d.x + 1)/2, v_bottom = (d.z + 1)/2.
+    div = 2 * math.sqrt(0.5 * (1 - d[1]))
+    u, v_top = 0.5 * (d[0] / div + 1), 1 - 0.5 * (d[2] / div + 1)
+    a = np.zeros((n, n, 3), np.float32)
+    a[int(v_top * n), int(u * n)] = 500.0
+    harness.empty_scene()
+    harness.env_world(harness.float_image("ball", a), projection="MIRROR_BALL")
+    lights = bake(count=4)
+    assert len(lights) == 1, len(lights)  # one lit pixel: one light, and the add-on says so
+    assert harness.angle_deg(sun_direction(lights[0]), d) < 2.0, sun_direction(lights[0])
+    assert "made 1 lights, not 4" in bpy.context.scene.probe_lights.last_notes
+
+
+def test_sky_texture_world_is_rendered():
+    harness.empty_scene()
+    world = bpy.data.worlds.new("sky")
+    bpy.context.scene.world = world
+    world.use_nodes = True
+    sky = world.node_tree.nodes.new("ShaderNodeTexSky")
+    sky.sky_type = "NISHITA"
+    sky.sun_elevation = math.radians(35)
+    sky.sun_rotation = math.radians(60)
+    world.node_tree.links.new(sky.outputs["Color"], world.node_tree.nodes["Background"].inputs["Color"])
+    lights = bake(count=16)
+    assert len(lights) == 16
+    assert bpy.context.scene.probe_lights.last_source.startswith("rendered world"), bpy.context.scene.probe_lights.last_source
+    sun = sun_direction(brightest(lights))
+    elevation = math.degrees(math.asin(sun[2]))
+    assert abs(elevation - 35) < 3, elevation
+
+
+def test_plain_colour_world_and_its_restore():
+    harness.empty_scene()
+    world = bpy.data.worlds.new("plain")
+    bpy.context.scene.world = world
+    world.use_nodes = False
+    world.color = (0.2, 0.3, 0.4)
+    lights = bake(count=4)
+    total = sum(irradiance(o) for o in lights)
+    assert np.allclose(total, 4 * math.pi * np.array([0.2, 0.3, 0.4]), rtol=2e-3), total
+    assert world.use_nodes and world_mix.has_mix(world)
+    assert bpy.ops.probe_lights.restore() == {"FINISHED"}
+    assert not world.use_nodes and not light_objects.baked_lights(bpy.context.scene)
+
+
+def test_rebake_replaces_only_its_own_lights():
+    harness.empty_scene()
+    bright_spot_world((10, 30))
+    scene = bpy.context.scene
+    user_light = bpy.data.objects.new("user key light", bpy.data.lights.new("key", "AREA"))
+    scene.collection.objects.link(user_light)
+    lights = bake(count=16)
+    collection = light_objects.find_collection(scene)
+    stray = bpy.data.objects.new("user empty", None)
+    collection.objects.link(stray)
+    assert len(lights) == 16
+    lights = bake(count=5)
+    assert len(lights) == 5
+    assert stray.name in collection.objects and user_light.name in scene.objects
+    assert len([c for c in bpy.data.collections if c.get(light_objects.COLLECTION_TAG)]) == 1
+    assert len([n for n in scene.world.node_tree.nodes if n.get(world_mix.NODE_TAG)]) > 0
+    mixes = [n for n in scene.world.node_tree.nodes if n.bl_idname == "ShaderNodeMixShader"]
+    assert len(mixes) == 1, "a re-bake replaces the world mix, it does not stack a second one"
+
+
+def test_restore_brings_the_world_back_exactly():
+    harness.empty_scene()
+    world = bright_spot_world((64, 32), rotation=(0.1, 0.2, 0.3))
+    before = harness.tree_snapshot(world)
+    bake(count=8, replace_reflections=True)
+    assert harness.tree_snapshot(world) != before
+    assert bpy.ops.probe_lights.restore() == {"FINISHED"}
+    assert harness.tree_snapshot(world) == before
+    assert not light_objects.baked_lights(bpy.context.scene)
+
+
+def expect_report(text):
+    """The bake fails with one ERROR report containing `text` (from Python an operator's error report is raised)."""
+    try:
+        bpy.ops.probe_lights.bake("EXEC_DEFAULT")
+    except RuntimeError as e:
+        message = str(e).strip()
+        assert text in message and "\n" not in message, message
+        print("  report: " + message)
+        return
+    raise AssertionError("the bake did not fail")
+
+
+def test_bad_worlds_are_one_line_reports():
+    harness.empty_scene()
+    bpy.context.scene.world = None
+    expect_report("the scene has no world")
+    world = harness.env_world(None)
+    expect_report("has no image")
+    missing = bpy.data.images.new("missing", 4, 4, float_buffer=True)
+    missing.source = "FILE"
+    missing.filepath = "/nonexistent/probe.exr"
+    missing.reload()
+    world.node_tree.nodes["Environment Texture"].image = missing
+    before = harness.tree_snapshot(world)
+    expect_report("is its file missing?")
+    assert harness.tree_snapshot(world) == before, "a failed bake leaves the world alone"
+    nan = np.ones((8, 16, 3), np.float32)
+    nan[2, 3, 1] = np.nan
+    world.node_tree.nodes["Environment Texture"].image = harness.float_image("nan", nan)
+    expect_report("1 NaN/Inf samples")
+    assert not light_objects.baked_lights(bpy.context.scene)
+
+
+
+def test_point_lights_give_the_same_irradiance_at_the_origin():
+    harness.empty_scene()
+    bright_spot_world((30, 20))
+    suns = bake(count=8)
+    sun_e = sorted(float(irradiance(o) @ LUM) for o in suns)
+    points = bake(count=8, light_type="POINT", distance=7.0)
+    for o in points:
+        assert abs(o.location.length - 7.0) < 1e-4
+    # Point power P at distance D gives P / (4 pi D^2) (measured: tests/blender/test_render.py checks it in Cycles).
+    point_e = sorted(float((np.array(o.data.color) * o.data.energy) @ LUM / (4 * math.pi * 49.0)) for o in points)
+    assert np.allclose(sun_e, point_e, rtol=1e-6), (sun_e, point_e)
+
+
+harness.run([test_register_unregister, test_real_probes_bake_with_their_energy,
+             test_strength_and_rotation_carry_into_the_lights, test_node_group_and_reroute, test_mirror_ball_image,
+             test_sky_texture_world_is_rendered, test_plain_colour_world_and_its_restore,
+             test_rebake_replaces_only_its_own_lights, test_restore_brings_the_world_back_exactly,
+             test_bad_worlds_are_one_line_reports,
+             test_point_lights_give_the_same_irradiance_at_the_origin])
