@@ -27,6 +27,7 @@ nlohmann::json bakeToJson(const std::string& sourcePath, const Probe& probe, con
       {"method", toString(options.method)},
       {"centroid", options.centroid == CentroidWeight::Energy ? "energy" : "energy2"},
       {"requested_lights", options.lights},
+      {"horizon_split", result.horizonSplit},
       {"working_resolution", {{"setting", options.resolution.toString()}, {"cell_size", result.cellSize}}},
       {"lights", lights},
       {"total_rgb", result.totalRgb},

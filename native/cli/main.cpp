@@ -32,6 +32,8 @@ options:
   --centroid energy|energy2         weight that places a light in its region (default energy)
   --resolution full|auto|WIDTH      working resolution the cuts are decided on (default auto: full up to
                                     2048 px wide); lights are always summed at full resolution
+  --horizon on|off                  lat-long: first cut at the horizon so no light mixes sky and ground
+                                    (default off: the papers' algorithms exactly)
   --nonfinite error|zero            NaN/Inf pixels: refuse the probe (default) or read them as 0
   -o, --output FILE                 write the lights as JSON ('-' for standard output)
   --preview FILE                    write a picture of the regions and lights (PNG)
@@ -99,6 +101,11 @@ Args parseBakeArgs(const std::vector<std::string>& argv) {
       auto r = WorkingResolution::parse(v);
       if (!r) throw UsageError("unknown resolution '" + v + "': use full, auto or a width in pixels");
       a.bake.resolution = *r;
+    } else if (arg == "--horizon") {
+      std::string v = next();
+      if (v == "on") a.bake.splitAtHorizon = true;
+      else if (v == "off") a.bake.splitAtHorizon = false;
+      else throw UsageError("--horizon takes on or off, got '" + v + "'");
     } else if (arg == "--nonfinite") {
       std::string v = next();
       if (v == "error")

@@ -21,8 +21,9 @@ T parseOr(const std::optional<T>& v, const std::string& what, const std::string&
 }
 
 BakeOptions bakeOptions(const std::string& method, int lights, const std::string& centroid,
-                        const std::string& resolution) {
+                        const std::string& resolution, bool horizon) {
   BakeOptions o;
+  o.splitAtHorizon = horizon;
   o.method = parseOr(parseMethod(method), "method", method, "median-cut or variance");
   o.lights = lights;
   if (centroid == "energy") o.centroid = CentroidWeight::Energy;
@@ -75,6 +76,7 @@ py::dict toDict(const Probe& probe, const BakeOptions& o, const BakeResult& r) {
   d["width"] = probe.width();
   d["height"] = probe.height();
   d["cell_size"] = r.cellSize;
+  d["horizon_split"] = r.horizonSplit;
   d["negative_samples"] = probe.report().negativeSamples;
   d["non_finite_samples"] = probe.report().nonFiniteSamples;
   std::vector<std::string> notes = probe.report().notes;
@@ -89,7 +91,7 @@ py::dict toDict(const Probe& probe, const BakeOptions& o, const BakeResult& r) {
 // Any row and pixel strides (e.g. a flipped view arr[::-1]) are read in place; other dtypes are converted.
 py::dict bakePixels(py::array_t<float, py::array::forcecast> pixels, const std::string& projection,
                     const std::string& method, int lights, const std::string& centroid, const std::string& resolution,
-                    const std::string& nonfinite) {
+                    bool horizon, const std::string& nonfinite) {
   if (pixels.ndim() != 2 && pixels.ndim() != 3)
     throw Error("pixels must be a H x W or H x W x C array, got " + std::to_string(pixels.ndim()) + " dimensions");
   const int channels = pixels.ndim() == 3 ? static_cast<int>(pixels.shape(2)) : 1;
@@ -102,7 +104,7 @@ py::dict bakePixels(py::array_t<float, py::array::forcecast> pixels, const std::
                  pixels.strides(0) / static_cast<py::ssize_t>(sizeof(float)),
                  pixels.strides(1) / static_cast<py::ssize_t>(sizeof(float))};
   const auto kind = parseOr(parseProjection(projection), "projection", projection, "latlong, mirror-ball or angular");
-  const BakeOptions options = bakeOptions(method, lights, centroid, resolution);
+  const BakeOptions options = bakeOptions(method, lights, centroid, resolution, horizon);
   const NonFinitePolicy policy = nonFinitePolicy(nonfinite);
   std::optional<Probe> probe;
   BakeResult result;
@@ -115,12 +117,13 @@ py::dict bakePixels(py::array_t<float, py::array::forcecast> pixels, const std::
 }
 
 py::dict bakeFile(const std::string& path, const std::string& projection, const std::string& method, int lights,
-                  const std::string& centroid, const std::string& resolution, const std::string& nonfinite) {
+                  const std::string& centroid, const std::string& resolution, bool horizon,
+                  const std::string& nonfinite) {
   ProbeOptions probeOptions;
   probeOptions.projection =
       parseOr(parseProjectionChoice(projection), "projection", projection, "auto, latlong, mirror-ball or angular");
   probeOptions.nonFinite = nonFinitePolicy(nonfinite);
-  const BakeOptions options = bakeOptions(method, lights, centroid, resolution);
+  const BakeOptions options = bakeOptions(method, lights, centroid, resolution, horizon);
   std::optional<Probe> probe;
   BakeResult result;
   {
@@ -140,13 +143,13 @@ PYBIND11_MODULE(_probelights, m) {
   py::register_exception<Error>(m, "Error", PyExc_ValueError);
   m.def("bake", &bakePixels, py::arg("pixels"), py::kw_only(), py::arg("projection") = "latlong",
         py::arg("method") = "variance", py::arg("lights") = 16, py::arg("centroid") = "energy",
-        py::arg("resolution") = "auto", py::arg("nonfinite") = "error",
+        py::arg("resolution") = "auto", py::arg("horizon") = false, py::arg("nonfinite") = "error",
         "Bake a probe given as a float32 H x W x C array (rows top to bottom; not copied). Returns a dict of numpy "
         "arrays: direction (N,3), rgb (N,3), solid_angle, angular_radius, energy_share (N,), rect (N,4), total_rgb (3,), "
         "and metadata (notes, timings_ms, cell_size, ...).");
   m.def("bake_file", &bakeFile, py::arg("path"), py::kw_only(), py::arg("projection") = "auto",
         py::arg("method") = "variance", py::arg("lights") = 16, py::arg("centroid") = "energy",
-        py::arg("resolution") = "auto", py::arg("nonfinite") = "error",
+        py::arg("resolution") = "auto", py::arg("horizon") = false, py::arg("nonfinite") = "error",
         "Read a probe with OpenImageIO and bake it; the same dict as bake(), plus 'path'.");
   m.attr("__version__") = "0.1.0";
 }

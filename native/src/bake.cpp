@@ -58,7 +58,11 @@ BakeResult bake(const Probe& probe, const BakeOptions& options) {
     rule = std::make_unique<MedianCutRule>(probe.projection());
   else
     rule = std::make_unique<VarianceMinimizationRule>();
-  Partition partition = partitionSphere(table, *rule, options.lights);
+  int horizonRow = -1;
+  if (options.splitAtHorizon && probe.projection().kind() == ProjectionKind::LatLong)
+    horizonRow = (probe.height() / 2 + table.cellSize() / 2) / table.cellSize();  // nearest cell border
+  Partition partition = partitionSphere(table, *rule, options.lights, horizonRow);
+  result.horizonSplit = partition.horizonCut;
   result.timings.partitionMs = msSince(t);
 
   for (const Rect& r : partition.regions) result.regions.push_back(table.toPixels(r));

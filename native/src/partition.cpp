@@ -25,7 +25,7 @@ std::optional<std::array<int, 2>> litCutRange(const MomentTable& table, const Re
   return std::array<int, 2>{first, last};
 }
 
-Partition partitionSphere(const MomentTable& table, const CutRule& rule, int count) {
+Partition partitionSphere(const MomentTable& table, const CutRule& rule, int count, int horizonRow) {
   if (count < 1) throw Error("asked for " + std::to_string(count) + " lights: ask for at least 1");
   Partition p;
   p.regions.push_back(table.wholeGrid());
@@ -49,8 +49,19 @@ Partition partitionSphere(const MomentTable& table, const CutRule& rule, int cou
     return true;
   };
 
+  // A horizon cut first, where it leaves light on both sides; then only splits by priority.
+  bool horizon = false;
+  if (count >= 2 && horizonRow > 0 && horizonRow < table.height()) {
+    auto parts = splitRect(p.regions[0], Axis::Y, horizonRow);
+    if (table.moments(parts[0]).litCells > 0 && table.moments(parts[1]).litCells > 0) {
+      p.cuts.push_back(Cut{p.regions[0], Axis::Y, horizonRow});
+      p.regions = {parts[0], parts[1]};
+      horizon = p.horizonCut = true;
+    }
+  }
+
   // N = 2^n: n rounds that split every region (the papers' algorithm exactly, when nothing stops a split).
-  if (std::has_single_bit(static_cast<unsigned>(count))) {
+  if (!horizon && std::has_single_bit(static_cast<unsigned>(count))) {
     for (int round = 0; round < std::countr_zero(static_cast<unsigned>(count)); ++round) {
       std::size_t n = p.regions.size();
       for (std::size_t i = 0; i < n; ++i) split(i);

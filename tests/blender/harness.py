@@ -23,6 +23,7 @@ def args():
     p.add_argument("--zip", required=True)
     p.add_argument("--shared", default="")
     p.add_argument("--studiolights", default="/usr/share/blender/datafiles/studiolights/world")
+    p.add_argument("--save", default="", help="folder to save pictures in (README images)")
     return p.parse_args(argv)
 
 

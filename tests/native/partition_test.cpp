@@ -53,7 +53,7 @@ TEST(Uniform, TotalIsFourPiL) {
 TEST(MedianCut, PowerOfTwoGivesEqualEnergyRegionsOnAUniformProbe) {
   auto t = uniformProbe(1024, 512, ProjectionKind::LatLong, {1, 1, 1});
   for (int n : {2, 4, 16, 64}) {
-    auto r = bakeWith(t.probe, Method::MedianCut, n);
+    auto r = bakeWith(t.probe, Method::MedianCut, n, kFull, /*horizon=*/false);  // the paper's algorithm
     ASSERT_EQ(static_cast<int>(r.lights.size()), n);
     for (const Light& l : r.lights) EXPECT_NEAR(l.energyShare * n, 1.0, 0.03) << n << " lights";
   }
@@ -71,13 +71,13 @@ TEST(FirstCut, MedianCutSplitsTheBrighterSourceVarianceSeparatesThem) {
     if (inDisc(x, y, bx)) return Rgb{4, 4, 4};
     return Rgb{0, 0, 0};
   });
-  auto mc = bakeWith(t.probe, Method::MedianCut, 2);
+  auto mc = bakeWith(t.probe, Method::MedianCut, 2, kFull, /*horizon=*/false);
   ASSERT_FALSE(mc.cuts.empty());
   EXPECT_EQ(mc.cuts[0].axis, Axis::X);
   EXPECT_GT(mc.cuts[0].position, ax - radius);
   EXPECT_LE(mc.cuts[0].position, ax + radius);
 
-  auto vm = bakeWith(t.probe, Method::Variance, 2);
+  auto vm = bakeWith(t.probe, Method::Variance, 2, kFull, /*horizon=*/false);
   ASSERT_FALSE(vm.cuts.empty());
   EXPECT_EQ(vm.cuts[0].axis, Axis::X);
   EXPECT_GT(vm.cuts[0].position, ax + radius);
@@ -208,6 +208,27 @@ TEST(HardProbes, BrightSunBesideDimSky) {
       for (const Light& l : r.lights) maxShare = std::max(maxShare, l.energyShare);
       EXPECT_GT(maxShare, 0.9);
     }
+}
+
+TEST(Horizon, FirstCutSeparatesSkyFromGroundAndNoLightMixesThem) {
+  auto t = sunnySky(256, 128);
+  for (Method m : kMethods)
+    for (int n : {2, 16, 64}) {
+      auto r = bakeWith(t.probe, m, n, kFull, /*horizon=*/true);
+      EXPECT_TRUE(r.horizonSplit);
+      ASSERT_FALSE(r.cuts.empty());
+      EXPECT_EQ(r.cuts[0].axis, Axis::Y);
+      EXPECT_EQ(r.cuts[0].position, 64);
+      for (const Rect& reg : r.regions) EXPECT_TRUE(reg.y1 <= 64 || reg.y0 >= 64);
+      EXPECT_EQ(static_cast<int>(r.lights.size()), n);
+      expectFiniteAndConserving(t.probe, r);
+    }
+  // One light cannot be split; a probe lit on one side only has nothing to separate.
+  EXPECT_FALSE(bakeWith(t.probe, Method::Variance, 1, kFull, true).horizonSplit);
+  auto skyOnly = makeProbe(64, 32, ProjectionKind::LatLong, [](int, int y) { return y < 16 ? Rgb{1, 1, 1} : Rgb{0, 0, 0}; });
+  auto r = bakeWith(skyOnly.probe, Method::Variance, 8, kFull, true);
+  EXPECT_FALSE(r.horizonSplit);
+  EXPECT_EQ(r.lights.size(), 8u);
 }
 
 TEST(WorkingResolution, CoarseCutsFallOnCellBordersAndStillConserve) {

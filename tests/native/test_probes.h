@@ -51,8 +51,9 @@ inline double maxRelativeDifference(const Rgb& a, const Rgb& b) {
 }
 
 inline BakeResult bakeWith(const Probe& probe, Method method, int lights,
-                           WorkingResolution resolution = {WorkingResolution::Mode::Full, 0}) {
+                           WorkingResolution resolution = {WorkingResolution::Mode::Full, 0}, bool horizon = false) {
   BakeOptions o;
+  o.splitAtHorizon = horizon;
   o.method = method;
   o.lights = lights;
   o.resolution = resolution;

@@ -21,6 +21,9 @@ struct BakeOptions {
   int lights = 16;
   CentroidWeight centroid = CentroidWeight::Energy;
   WorkingResolution resolution;
+  // Lat-long probes: make the first cut at the horizon so no light mixes sky and ground (partition.h). Off gives
+  // the papers' algorithms exactly.
+  bool splitAtHorizon = false;
 };
 
 struct BakeTimings {
@@ -32,6 +35,7 @@ struct BakeResult {
   std::vector<Rect> regions;  // every region in pixels, lit or not (they tile the image)
   std::vector<Cut> cuts;      // in pixels, in the order they were made
   int cellSize = 1;
+  bool horizonSplit = false;  // whether the first cut is at the horizon
   Rgb totalRgb{};  // the probe's integral of L over the sphere
   BakeTimings timings;
   std::vector<std::string> notes;

@@ -1,0 +1,187 @@
+"""The test that proves the product: a diffuse sphere over a plane rendered by Cycles lit by the world, and again lit
+only by the baked lights (the world's diffuse light switched off by the add-on, the camera still seeing it).
+The difference of 8x8-pixel block means of the lit pixels is printed per probe and must stay under a bound.
+Also checks the light units the add-on relies on (conversion.py) in Cycles itself."""
+
+import math
+import os
+import sys
+import tempfile
+
+import bpy
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import harness  # noqa: E402
+
+ARGS = harness.args()
+harness.install_addon(ARGS.zip)
+
+WIDTH, HEIGHT, BLOCK = 128, 96, 8
+SAMPLES = 256
+BOUND_64 = 0.025  # mean relative difference of lit 8x8 blocks at 64 lights (measured 0.5-1.2 %)
+LUM = np.array([0.2126, 0.7152, 0.0722])
+
+
+def diffuse_material(albedo=0.8):
+    mat = bpy.data.materials.new("diffuse")
+    mat.use_nodes = True
+    nt = mat.node_tree
+    nt.nodes.remove(nt.nodes["Principled BSDF"])
+    d = nt.nodes.new("ShaderNodeBsdfDiffuse")
+    d.inputs["Color"].default_value = (albedo, albedo, albedo, 1)
+    nt.links.new(d.outputs[0], nt.nodes["Material Output"].inputs["Surface"])
+    return mat
+
+
+def sphere_over_plane():
+    scene = bpy.context.scene
+    mat = diffuse_material()
+    bpy.ops.mesh.primitive_plane_add(size=12)
+    bpy.context.active_object.data.materials.append(mat)
+    bpy.ops.mesh.primitive_uv_sphere_add(radius=1, location=(0, 0, 1), segments=48, ring_count=24)
+    bpy.ops.object.shade_smooth()
+    bpy.context.active_object.data.materials.append(mat)
+    cam = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
+    cam.location = (0, -7, 3.2)
+    cam.rotation_euler = (math.radians(72), 0, 0)
+    cam.data.lens = 35
+    scene.collection.objects.link(cam)
+    scene.camera = cam
+    r = scene.render
+    r.engine = "CYCLES"
+    r.resolution_x, r.resolution_y, r.resolution_percentage = WIDTH, HEIGHT, 100
+    r.film_transparent = True
+    r.image_settings.file_format = "OPEN_EXR"
+    r.image_settings.color_depth = "32"
+    scene.cycles.samples = SAMPLES
+    scene.cycles.use_adaptive_sampling = False
+    scene.cycles.use_denoising = False
+    scene.cycles.seed = 1
+    scene.cycles.max_bounces = 4
+    scene.cycles.sample_clamp_indirect = 0.0  # the reference must be unbiased (Blender 3.x defaults to 10)
+
+
+def render():
+    fd, path = tempfile.mkstemp(suffix=".exr")
+    os.close(fd)
+    scene = bpy.context.scene
+    scene.render.filepath = path
+    bpy.ops.render.render(write_still=True)
+    img = bpy.data.images.load(path)
+    a = np.empty(WIDTH * HEIGHT * 4, np.float32)
+    img.pixels.foreach_get(a)
+    bpy.data.images.remove(img)
+    os.remove(path)
+    return a.reshape(HEIGHT, WIDTH, 4)[::-1]
+
+
+def block_difference(world_lit, light_lit):
+    """Mean over the 8x8 blocks made only of lit object pixels of |lights - world| / world (luminance)."""
+    h, w = HEIGHT // BLOCK, WIDTH // BLOCK
+    def blocks(a):
+        return a[: h * BLOCK, : w * BLOCK].reshape(h, BLOCK, w, BLOCK, *a.shape[2:]).mean(axis=(1, 3))
+    ya, yb = blocks(world_lit[..., :3] @ LUM), blocks(light_lit[..., :3] @ LUM)
+    solid = blocks((world_lit[..., 3] > 0.999).astype(float)) == 1.0
+    lit = solid & (ya > 0.02 * ya[solid].max())
+    rel = np.abs(yb[lit] - ya[lit]) / ya[lit]
+    return float(rel.mean()), int(lit.sum())
+
+
+def save_png(pixels, path):
+    """Saves a side-by-side of linear renders, tone-mapped (x / (1 + x), sRGB), as an 8-bit PNG."""
+    x = np.clip(pixels[..., :3] / (1 + pixels[..., :3]), 0, 1)
+    srgb = np.where(x <= 0.0031308, 12.92 * x, 1.055 * x ** (1 / 2.4) - 0.055)
+    h, w = srgb.shape[:2]
+    rgba = np.ones((h, w, 4), np.float32)
+    rgba[..., :3] = srgb
+    img = bpy.data.images.new("save", w, h)
+    img.colorspace_settings.name = "Non-Color"
+    img.pixels.foreach_set(rgba[::-1].ravel())
+    img.filepath_raw = path
+    img.file_format = "PNG"
+    img.save()
+    bpy.data.images.remove(img)
+
+
+def compare(probe, counts):
+    harness.empty_scene()
+    harness.env_world(bpy.data.images.load(probe))
+    sphere_over_plane()
+    world_lit = render()
+    bpy.context.scene.cycles.seed = 2
+    noise = block_difference(world_lit, render())[0]  # the same world-lit render with other random numbers
+    bpy.context.scene.cycles.seed = 1
+    results = {"noise": noise}
+    for n in counts:
+        assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=n) == {"FINISHED"}
+        light_lit = render()
+        results[n] = block_difference(world_lit, light_lit)
+        if ARGS.save and n == 64:
+            name = os.path.splitext(os.path.basename(probe))[0]
+            save_png(np.concatenate([world_lit, light_lit], axis=1),
+                     os.path.join(ARGS.save, "render_%s_world_vs_64_suns.png" % name))
+    return results
+
+
+def test_baked_lights_render_like_the_world():
+    probes = [os.path.join(ARGS.shared, "hdri", "noon_grass_1k.hdr"),          # a strong sun (64 % of the energy)
+              os.path.join(ARGS.shared, "hdri", "studio_small_05_1k.hdr"),     # large softboxes
+              os.path.join(ARGS.studiolights, "forest.exr")]                   # dappled, Blender's own
+    worst = 0.0
+    for probe in probes:
+        results = compare(probe, [16, 64])
+        print("  %-26s noise floor (world vs world, other seed): %.2f %%" % (os.path.basename(probe),
+                                                                          100 * results.pop("noise")))
+        for n, (diff, blocks) in results.items():
+            print("  %-26s %3d suns: mean relative difference %.2f %% over %d lit 8x8 blocks (%d spp)" % (
+                os.path.basename(probe), n, 100 * diff, blocks, SAMPLES), flush=True)
+        worst = max(worst, results[64][0])
+    assert worst < BOUND_64, "64 lights differ from the world by %.2f %% (bound %.0f %%)" % (100 * worst, 100 * BOUND_64)
+
+
+def test_light_units_in_cycles():
+    """A sun of strength S gives irradiance S; a point light of power P at distance D gives P / (4 pi D^2)."""
+    harness.empty_scene()
+    scene = bpy.context.scene
+    scene.world = bpy.data.worlds.new("black")
+    scene.world.color = (0, 0, 0)
+    bpy.ops.mesh.primitive_plane_add(size=2)
+    bpy.context.active_object.data.materials.append(diffuse_material(1.0))
+    cam = bpy.data.objects.new("cam", bpy.data.cameras.new("cam"))
+    cam.data.type = "ORTHO"
+    cam.data.ortho_scale = 0.2
+    cam.location = (0, 0, 5)
+    scene.collection.objects.link(cam)
+    scene.camera = cam
+    r = scene.render
+    r.resolution_x = r.resolution_y = 8
+    r.image_settings.file_format = "OPEN_EXR"
+    scene.cycles.samples = 16
+    scene.cycles.use_denoising = False
+
+    def radiance():
+        fd, path = tempfile.mkstemp(suffix=".exr")
+        os.close(fd)
+        r.filepath = path
+        bpy.ops.render.render(write_still=True)
+        img = bpy.data.images.load(path)
+        value = float(np.array(img.pixels[:]).reshape(8, 8, 4)[..., 0].mean())
+        bpy.data.images.remove(img)
+        os.remove(path)
+        return value
+
+    sun = bpy.data.objects.new("sun", bpy.data.lights.new("sun", "SUN"))
+    sun.data.energy, sun.data.angle = 2.0, 0.0
+    scene.collection.objects.link(sun)
+    assert abs(radiance() * math.pi / 2.0 - 1) < 1e-3  # white diffuse: radiance = E / pi
+    bpy.data.objects.remove(sun)
+    point = bpy.data.objects.new("point", bpy.data.lights.new("point", "POINT"))
+    point.data.energy, point.data.shadow_soft_size = 1000.0, 0.0
+    point.location = (0, 0, 10)
+    scene.collection.objects.link(point)
+    E = radiance() * math.pi
+    assert abs(E / (1000.0 / (4 * math.pi * 100.0)) - 1) < 1e-2, E
+
+
+harness.run([test_light_units_in_cycles, test_baked_lights_render_like_the_world])
