@@ -26,8 +26,10 @@ def bake(**settings):
 
 
 def irradiance(obj):
-    """What a baked sun gives a facing surface, per channel (W/m^2)."""
-    return np.array(obj.data.color) * obj.data.energy
+    """What a baked sun gives a facing surface, per channel (W/m^2): a wide Cycles sun gives less than its
+    strength (conversion.sun_normal_irradiance, checked in Cycles by test_render.py)."""
+    from probe_lights.conversion import sun_normal_irradiance
+    return np.array(obj.data.color) * obj.data.energy * sun_normal_irradiance(obj.data.angle)
 
 
 def sun_direction(obj):

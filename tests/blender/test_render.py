@@ -157,7 +157,7 @@ def test_light_units_in_cycles():
     r = scene.render
     r.resolution_x = r.resolution_y = 8
     r.image_settings.file_format = "OPEN_EXR"
-    scene.cycles.samples = 16
+    scene.cycles.samples = 64
     scene.cycles.use_denoising = False
 
     def radiance():
@@ -175,6 +175,11 @@ def test_light_units_in_cycles():
     sun.data.energy, sun.data.angle = 2.0, 0.0
     scene.collection.objects.link(sun)
     assert abs(radiance() * math.pi / 2.0 - 1) < 1e-3  # white diffuse: radiance = E / pi
+    from probe_lights.conversion import sun_parameters
+    for radius in (0.3, 0.8, 1.2):  # a wide sun's strength is raised so a facing surface still gets E
+        p = sun_parameters((0, 0, 1), (2.0, 2.0, 2.0), radius)
+        sun.data.energy, sun.data.angle = p["energy"], p["angle"]
+        assert abs(radiance() * math.pi / 2.0 - 1) < 3e-3, (radius, radiance() * math.pi)
     bpy.data.objects.remove(sun)
     point = bpy.data.objects.new("point", bpy.data.lights.new("point", "POINT"))
     point.data.energy, point.data.shadow_soft_size = 1000.0, 0.0
