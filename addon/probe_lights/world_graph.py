@@ -116,7 +116,10 @@ def _is_zero(v, tol=1e-9):
 
 
 def _vector_chain(socket, groups):
-    """The rotation A with lookup direction = A @ world direction, for the Environment Texture's Vector input."""
+    """The rotation A with lookup direction = A @ world direction, for the Environment Texture's Vector input.
+
+    Walking upstream from the texture, each node found is applied to the direction before the ones already seen,
+    so its matrix multiplies on the right."""
     a = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]
     while True:
         found = _linked_output(socket, groups)
@@ -141,7 +144,7 @@ def _vector_chain(socket, groups):
             m = euler_xyz_matrix(*r)
             # Point, Vector, Normal: out = R @ v (scale is uniform, directions are normalized);
             # Texture is the inverse transform: out = R^T @ v.
-            a = matmul(transpose(m) if node.vector_type == "TEXTURE" else m, a)
+            a = matmul(a, transpose(m) if node.vector_type == "TEXTURE" else m)
             socket = node.inputs["Vector"]
         elif kind == "ShaderNodeVectorRotate":
             if not _is_zero(_constant(node.inputs["Center"], "Vector Rotate center")):
@@ -155,7 +158,7 @@ def _vector_chain(socket, groups):
                 if axis is None:
                     axis = _constant(node.inputs["Axis"], "Vector Rotate axis")
                 m = axis_angle_matrix(axis, angle)
-            a = matmul(transpose(m) if node.invert else m, a)
+            a = matmul(a, transpose(m) if node.invert else m)
             socket = node.inputs["Vector"]
         else:
             raise _Render("the texture's vector comes from a %s node" % kind.replace("ShaderNode", ""))

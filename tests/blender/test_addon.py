@@ -174,6 +174,30 @@ def test_sky_texture_world_is_rendered():
     assert abs(elevation - 35) < 3, elevation
 
 
+def test_read_and_rendered_worlds_agree():
+    """The rules that read a world (rotation chains) against Blender itself: the same world rendered by the
+    panoramic camera must put the bright spot in the same direction."""
+    from probe_lights import operators
+    harness.empty_scene()
+    world = bright_spot_world((40, 20), rotation=(0.4, -0.3, 2.0))
+    nt = world.node_tree
+    env = next(n for n in nt.nodes if n.bl_idname == "ShaderNodeTexEnvironment")
+    mapping = next(n for n in nt.nodes if n.bl_idname == "ShaderNodeMapping")
+    rotate = nt.nodes.new("ShaderNodeVectorRotate")
+    rotate.rotation_type = "EULER_XYZ"
+    rotate.invert = True
+    rotate.inputs["Rotation"].default_value = (-0.2, 0.9, 0.3)
+    nt.links.new(mapping.outputs["Vector"], rotate.inputs["Vector"])
+    nt.links.new(rotate.outputs["Vector"], env.inputs["Vector"])
+    env.interpolation = "Closest"
+    read = sun_direction(brightest(bake(count=8)))
+    assert "image 'spot'" in bpy.context.scene.probe_lights.last_source
+    rendered = _probelights.bake(operators._rendered_probe(world), lights=8)
+    brightest_rendered = rendered["direction"][np.argmax(rendered["rgb"] @ LUM)]
+    assert harness.angle_deg(read, brightest_rendered) < 2.0, (read, brightest_rendered)
+    print("  read vs rendered world: %.2f degrees apart" % harness.angle_deg(read, brightest_rendered))
+
+
 def test_plain_colour_world_and_its_restore():
     harness.empty_scene()
     world = bpy.data.worlds.new("plain")
@@ -268,7 +292,8 @@ def test_point_lights_give_the_same_irradiance_at_the_origin():
 
 harness.run([test_register_unregister, test_real_probes_bake_with_their_energy,
              test_strength_and_rotation_carry_into_the_lights, test_node_group_and_reroute, test_mirror_ball_image,
-             test_sky_texture_world_is_rendered, test_plain_colour_world_and_its_restore,
+             test_sky_texture_world_is_rendered, test_read_and_rendered_worlds_agree,
+             test_plain_colour_world_and_its_restore,
              test_rebake_replaces_only_its_own_lights, test_restore_brings_the_world_back_exactly,
              test_bad_worlds_are_one_line_reports,
              test_point_lights_give_the_same_irradiance_at_the_origin])

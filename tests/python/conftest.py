@@ -1,0 +1,15 @@
+import os
+import sys
+
+import pytest
+
+# The module lives in the add-on package the build assembles; import it directly (the package needs bpy).
+BUILD = os.environ.get("PROBELIGHTS_BUILD", os.path.join(os.path.dirname(__file__), "..", "..", "build"))
+sys.path.insert(0, os.path.join(BUILD, "addon", "probe_lights"))
+# The add-on's bpy-free rules (world_graph, conversion) are imported as plain modules too.
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "addon", "probe_lights"))
+
+
+@pytest.fixture
+def bundled_probe():
+    return os.path.join(os.path.dirname(__file__), "..", "..", "assets", "noon_grass_1k.hdr")

@@ -1,0 +1,104 @@
+"""The _probelights module from plain Python (the system Python Blender runs): arrays in, numpy arrays out."""
+
+import math
+import threading
+
+import numpy as np
+import pytest
+
+import _probelights as pl
+
+
+def test_uniform_probe_total_is_four_pi_l():
+    a = np.full((64, 128, 3), (0.5, 1.0, 2.0), np.float32)
+    r = pl.bake(a, lights=8)
+    assert r["direction"].shape == (8, 3) and r["rgb"].shape == (8, 3) and r["rect"].shape == (8, 4)
+    assert np.allclose(r["rgb"].sum(axis=0), 4 * math.pi * np.array([0.5, 1.0, 2.0]), rtol=1e-10)
+    assert np.allclose(r["total_rgb"], r["rgb"].sum(axis=0), rtol=1e-12)
+    assert np.allclose(np.linalg.norm(r["direction"], axis=1), 1.0)
+    assert r["energy_share"].sum() == pytest.approx(1.0)
+
+
+def test_flipped_and_strided_views_are_read_in_place():
+    rng = np.random.default_rng(3)
+    a = rng.random((32, 64, 4), dtype=np.float32)
+    flipped = a[::-1]  # Blender's rows are bottom-up: the add-on passes this view
+    r1 = pl.bake(np.ascontiguousarray(flipped), lights=5)
+    r2 = pl.bake(flipped, lights=5)
+    assert np.array_equal(r1["rgb"], r2["rgb"]) and np.array_equal(r1["direction"], r2["direction"])
+    # Alpha is ignored; a grey H x W array is replicated.
+    r3 = pl.bake(np.ascontiguousarray(a[..., :3]), lights=5)
+    r4 = pl.bake(a, lights=5)
+    assert np.array_equal(r3["rgb"], r4["rgb"])
+    grey = pl.bake(a[..., 0].copy(), lights=3)
+    assert np.allclose(grey["rgb"][:, 0], grey["rgb"][:, 1])
+
+
+def test_other_dtypes_are_converted():
+    r = pl.bake(np.ones((8, 16, 3), np.float64), lights=2)
+    assert r["rgb"].sum() == pytest.approx(3 * 4 * math.pi)
+
+
+def test_lat_long_convention():
+    a = np.zeros((32, 64, 3), np.float32)
+    a[15, 16] = 10.0  # a quarter from the left, just above the horizon: +Y
+    d = pl.bake(a, lights=1)["direction"][0]
+    assert d[1] > 0.99
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    ({"lights": 0}, "at least 1"),
+    ({"method": "magic"}, "unknown method"),
+    ({"projection": "cube"}, "unknown projection"),
+    ({"resolution": "huge"}, "unknown resolution"),
+    ({"nonfinite": "maybe"}, "non-finite policy"),
+])
+def test_bad_requests_raise_with_the_cores_message(kwargs, message):
+    with pytest.raises(pl.Error, match=message):
+        pl.bake(np.ones((8, 16, 3), np.float32), **kwargs)
+    assert issubclass(pl.Error, ValueError)
+
+
+def test_bad_pixels():
+    a = np.ones((8, 16, 3), np.float32)
+    a[2, 3, 0] = np.nan
+    with pytest.raises(pl.Error, match=r"1 NaN/Inf samples, first at pixel \(3, 2\)"):
+        pl.bake(a)
+    r = pl.bake(a, nonfinite="zero", lights=2)
+    assert np.isfinite(r["rgb"]).all() and r["non_finite_samples"] == 1
+    with pytest.raises(pl.Error, match="H x W"):
+        pl.bake(np.ones(10, np.float32))
+    with pytest.raises(pl.Error, match="empty"):
+        pl.bake(np.ones((0, 0, 3), np.float32))
+
+
+def test_bake_file_errors(tmp_path):
+    with pytest.raises(pl.Error, match="no such file"):
+        pl.bake_file(str(tmp_path / "missing.exr"))
+    (tmp_path / "junk.hdr").write_text("not an image")
+    with pytest.raises(pl.Error, match="cannot read probe"):
+        pl.bake_file(str(tmp_path / "junk.hdr"))
+
+
+def test_bake_file_on_the_bundled_probe(bundled_probe):
+    r = pl.bake_file(bundled_probe, lights=16)
+    assert r["width"] == 1024 and r["projection"] == "latlong" and len(r["rgb"]) == 16
+    assert "auto" in r["notes"][0]
+    assert set(r["timings_ms"]) == {"tables", "partition", "lights"}
+
+
+def test_the_gil_is_released_and_results_are_deterministic():
+    a = np.random.default_rng(5).random((256, 512, 3), dtype=np.float32)
+    reference = pl.bake(a, lights=33)
+    results = [None] * 4
+
+    def work(i):
+        results[i] = pl.bake(a, lights=33)
+
+    threads = [threading.Thread(target=work, args=(i,)) for i in range(4)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    for r in results:
+        assert np.array_equal(r["rgb"], reference["rgb"])

@@ -1,0 +1,216 @@
+"""The add-on's world-reading rules on fake node trees (no Blender needed), and its unit conversions."""
+
+import math
+
+import numpy as np
+import pytest
+
+import conversion
+import world_graph as wg
+
+
+class Socket:
+    def __init__(self, node, name, default=None, identifier=None):
+        self.node, self.name, self.identifier, self.default_value = node, name, identifier or name, default
+        self.links = []
+
+    @property
+    def is_linked(self):
+        return bool(self.links)
+
+
+class Sockets(list):
+    def __getitem__(self, key):
+        if isinstance(key, str):
+            for s in self:
+                if s.name == key:
+                    return s
+            raise KeyError(key)
+        return list.__getitem__(self, key)
+
+    def __contains__(self, key):
+        return any(s.name == key for s in self) if isinstance(key, str) else list.__contains__(self, key)
+
+
+class Link:
+    def __init__(self, from_socket, to_socket):
+        self.from_socket, self.to_socket = from_socket, to_socket
+        self.from_node, self.to_node = from_socket.node, to_socket.node
+
+
+class Node(dict):
+    def __init__(self, bl_idname, inputs=(), outputs=(), **attrs):
+        super().__init__()
+        self.bl_idname, self.name, self.mute = bl_idname, bl_idname, False
+        self.inputs = Sockets(Socket(self, *i) if isinstance(i, tuple) else Socket(self, i) for i in inputs)
+        self.outputs = Sockets(Socket(self, o) for o in outputs)
+        self.__dict__.update(attrs)
+
+
+class Tree:
+    def __init__(self, *nodes):
+        self.nodes, self.name = list(nodes), "tree"
+
+    def add(self, node):
+        self.nodes.append(node)
+        return node
+
+
+def link(out, inp):
+    inp.links.append(Link(out, inp))
+
+
+class World:
+    def __init__(self, tree, use_nodes=True):
+        self.node_tree, self.use_nodes = tree, use_nodes
+
+
+def output_and_background(strength=1.0):
+    out = Node("ShaderNodeOutputWorld", ["Surface"], is_active_output=True)
+    bg = Node("ShaderNodeBackground", [("Color", (1, 1, 1, 1)), ("Strength", strength)], ["Background"])
+    link(bg.outputs["Background"], out.inputs["Surface"])
+    return out, bg
+
+
+def env_node(image="img", projection="EQUIRECTANGULAR"):
+    return Node("ShaderNodeTexEnvironment", ["Vector"], ["Color"], image=image, projection=projection)
+
+
+def mapping(rotation, vector_type="POINT", scale=(1, 1, 1), location=(0, 0, 0)):
+    return Node("ShaderNodeMapping", ["Vector", ("Location", location), ("Rotation", rotation), ("Scale", scale)],
+                ["Vector"], vector_type=vector_type)
+
+
+def simple_world(strength=2.0, vector_chain=()):
+    out, bg = output_and_background(strength)
+    env = env_node()
+    link(env.outputs["Color"], bg.inputs["Color"])
+    tree = Tree(out, bg, env)
+    target = env.inputs["Vector"]
+    for node in vector_chain:
+        tree.add(node)
+        link(node.outputs["Vector"], target)
+        target = node.inputs["Vector"]
+    if vector_chain:
+        coords = tree.add(Node("ShaderNodeTexCoord", [], ["Generated", "Object"]))
+        link(coords.outputs["Generated"], target)
+    return World(tree), out, bg, env
+
+
+def test_environment_texture_is_read_with_its_strength():
+    world, *_ = simple_world(strength=2.0)
+    s = wg.find_probe(world)
+    assert s.image == "img" and s.projection == "latlong" and s.strength == 2.0 and not s.render_reason
+    assert np.allclose(s.world_from_probe, np.eye(3))
+
+
+def test_euler_xyz_is_blenders():
+    # 90 degrees about Z takes +X to +Y; XYZ order means R = Rz Ry Rx.
+    assert np.allclose(np.array(wg.euler_xyz_matrix(0, 0, math.pi / 2)) @ [1, 0, 0], [0, 1, 0])
+    rx, ry, rz = 0.3, -0.7, 1.1
+    c, s = math.cos, math.sin
+    Rx = np.array([[1, 0, 0], [0, c(rx), -s(rx)], [0, s(rx), c(rx)]])
+    Ry = np.array([[c(ry), 0, s(ry)], [0, 1, 0], [-s(ry), 0, c(ry)]])
+    Rz = np.array([[c(rz), -s(rz), 0], [s(rz), c(rz), 0], [0, 0, 1]])
+    assert np.allclose(wg.euler_xyz_matrix(rx, ry, rz), Rz @ Ry @ Rx)
+
+
+@pytest.mark.parametrize("vector_type, inverse", [("POINT", False), ("VECTOR", False), ("NORMAL", False),
+                                                   ("TEXTURE", True)])
+def test_mapping_rotation(vector_type, inverse):
+    rot = (0.2, 0.5, -1.0)
+    world, *_ = simple_world(vector_chain=[mapping(rot, vector_type)])
+    r = np.array(wg.euler_xyz_matrix(*rot))
+    expected = r if inverse else r.T  # lookup = R d  =>  world direction = R^T (probe direction)
+    assert np.allclose(wg.find_probe(world).world_from_probe, expected)
+
+
+def test_vector_rotate_chain_composes():
+    rot_node = Node("ShaderNodeVectorRotate", ["Vector", ("Center", (0, 0, 0)), ("Axis", (0, 0, 1)), ("Angle", 0.4),
+                                                ("Rotation", (0, 0, 0))], ["Vector"], rotation_type="Z_AXIS",
+                    invert=False)
+    m = mapping((0.1, 0, 0))
+    world, *_ = simple_world(vector_chain=[rot_node, m])  # env <- rotate <- mapping <- coords
+    # The mapping is applied to the view direction first, then the rotation: lookup = Rrotate @ Rmapping @ d.
+    lookup = np.array(wg.axis_angle_matrix((0, 0, 1), 0.4)) @ np.array(wg.euler_xyz_matrix(0.1, 0, 0))
+    assert np.allclose(wg.find_probe(world).world_from_probe, lookup.T)
+
+
+@pytest.mark.parametrize("node, reason", [
+    (mapping((0, 0, 0), scale=(1, 2, 1)), "non-uniform"),
+    (mapping((0, 0, 0), location=(0, 0, 1)), "location"),
+])
+def test_mappings_that_are_not_rotations_are_rendered(node, reason):
+    world, *_ = simple_world(vector_chain=[node])
+    s = wg.find_probe(world)
+    assert s.image is None and reason in s.render_reason
+
+
+def test_other_worlds_are_rendered_with_a_reason():
+    out, bg = output_and_background()
+    sky = Node("ShaderNodeTexSky", [], ["Color"])
+    link(sky.outputs["Color"], bg.inputs["Color"])
+    assert "TexSky" in wg.find_probe(World(Tree(out, bg, sky))).render_reason
+    out, bg = output_and_background()
+    assert "plain colour" in wg.find_probe(World(Tree(out, bg))).render_reason
+    assert "plain colour" in wg.find_probe(World(None, use_nodes=False)).render_reason
+    out = Node("ShaderNodeOutputWorld", ["Surface"], is_active_output=True)
+    assert "nothing is connected" in wg.find_probe(World(Tree(out))).render_reason
+
+
+def test_missing_image_and_world_are_errors():
+    world, out, bg, env = simple_world()
+    env.image = None
+    with pytest.raises(ValueError, match="has no image"):
+        wg.find_probe(world)
+    with pytest.raises(ValueError, match="no world"):
+        wg.find_probe(None)
+
+
+def test_our_own_mix_is_looked_through():
+    world, out, bg, env = simple_world()
+    mix = Node("ShaderNodeMixShader", ["Fac", ("Shader", None, "Shader"), ("Shader", None, "Shader_001")], ["Shader"])
+    mix[wg.MIX_TAG] = 1
+    out.inputs["Surface"].links.clear()
+    link(bg.outputs["Background"], mix.inputs[2])
+    link(mix.outputs["Shader"], out.inputs["Surface"])
+    world.node_tree.add(mix)
+    assert wg.find_probe(world).image == "img"
+
+
+def test_groups_and_reroutes_are_followed():
+    out, bg = output_and_background()
+    group_tree = Tree()
+    env = group_tree.add(env_node())
+    group_out = group_tree.add(Node("NodeGroupOutput", ["Color"], is_active_output=True))
+    link(env.outputs["Color"], group_out.inputs["Color"])
+    group = Node("ShaderNodeGroup", [], ["Color"], node_tree=group_tree)
+    reroute = Node("NodeReroute", ["Input"], ["Output"])
+    link(group.outputs["Color"], reroute.inputs[0])
+    link(reroute.outputs["Output"], bg.inputs["Color"])
+    assert wg.find_probe(World(Tree(out, bg, group, reroute))).image == "img"
+
+
+def test_sun_parameters_point_the_lamp_and_keep_its_irradiance():
+    d = np.array([0.3, -0.4, 0.866])
+    d /= np.linalg.norm(d)
+    p = conversion.sun_parameters(d, (2.0, 1.0, 0.5), angular_radius=0.2)
+    rot = p["rotation"]
+    assert np.allclose(rot.T @ rot, np.eye(3)) and np.isclose(np.linalg.det(rot), 1)
+    assert np.allclose(rot[:, 2], d)  # local +Z towards the light: a sun shines along its -Z
+    assert p["color"] == (1.0, 0.5, 0.25) and p["angle"] == pytest.approx(0.2)
+    assert p["energy"] * conversion.sun_normal_irradiance(p["angle"]) == pytest.approx(2.0)
+    assert conversion.sun_parameters(d, (2, 1, 0.5), 0.2, soft_shadows=False)["angle"] == 0.0
+    straight_up = conversion.rotation_to_direction((0, 0, 1))
+    assert np.allclose(straight_up[:, 2], (0, 0, 1))
+
+
+def test_point_power_gives_the_irradiance_at_the_origin():
+    p = conversion.point_parameters((0, 0, 2), (3.0, 3.0, 3.0), distance=5.0)
+    assert np.allclose(p["location"], (0, 0, 5))
+    assert p["energy"] / (4 * math.pi * 25) == pytest.approx(3.0)
+
+
+def test_srgb_to_linear():
+    assert np.allclose(conversion.srgb_to_linear([0.0, 0.04045, 0.5, 1.0]), [0.0, 0.04045 / 12.92, 0.2140, 1.0],
+                       atol=1e-4)
