@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages probelights needs, only those that are missing. Run as root.
 #   scripts/install-deps.sh          build + run (CLI, library, Python module)
-#   scripts/install-deps.sh --test   also what the tests need (GoogleTest, pytest, Blender)
+#   scripts/install-deps.sh --test   also what the tests need (GoogleTest, pytest, Blender, Xvfb)
 set -euo pipefail
 packages=(cmake g++ make pkg-config libopenimageio-dev nlohmann-json3-dev pybind11-dev python3-dev python3-numpy
           libbenchmark-dev)
 if [[ "${1:-}" == "--test" ]]; then
-  packages+=(libgtest-dev googletest python3-pytest blender)
+  packages+=(libgtest-dev googletest python3-pytest blender xvfb xauth)
 fi
 missing=()
 for p in "${packages[@]}"; do

@@ -79,9 +79,11 @@ class PROBE_LIGHTS_OT_bake(bpy.types.Operator):
     __annotations__ = bake_settings()
 
     def invoke(self, context, event):
+        # From a button: start from the panel's settings, except what the caller set explicitly.
         settings = context.scene.probe_lights
         for name in SETTING_NAMES:
-            setattr(self, name, getattr(settings, name))
+            if not self.properties.is_property_set(name):
+                setattr(self, name, getattr(settings, name))
         return self.execute(context)
 
     def execute(self, context):

@@ -1,10 +1,19 @@
 #!/usr/bin/env bash
-# Runs one Blender background test file in a fresh user profile (the add-on is installed there from its zip).
-#   run.sh BLENDER TEST.py ZIP SHARED_DIR
+# Runs one Blender test file in a fresh user profile (the add-on is installed there from its zip): in background
+# mode, or with --ui as the first argument in a window on a virtual X display (for undo and panels).
+#   run.sh [--ui] BLENDER TEST.py ZIP SHARED_DIR [more test args]
 set -euo pipefail
+ui=
+if [[ $1 == --ui ]]; then ui=1; shift; fi
 blender=$1 test=$2 zip=$3 shared=$4
+shift 4
 profile=$(mktemp -d)
 trap 'rm -rf "$profile"' EXIT
 export BLENDER_USER_SCRIPTS=$profile/scripts BLENDER_USER_CONFIG=$profile/config
-"$blender" -b --factory-startup -noaudio --python-exit-code 1 --python "$test" -- --zip "$zip" --shared "$shared" 2>&1 |
+if [[ -n $ui ]]; then
+  command=(xvfb-run -a -s "-screen 0 1280x900x24" "$blender" --factory-startup -noaudio --python "$test")
+else
+  command=("$blender" -b --factory-startup -noaudio --python-exit-code 1 --python "$test")
+fi
+"${command[@]}" -- --zip "$zip" --shared "$shared" "$@" 2>&1 |
   grep -vE '^(Fra:|Read prefs|Saved: |Info: Saved|Blender quit| Time: |ERROR \(bke.lib_id_delete\))'
