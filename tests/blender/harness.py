@@ -24,6 +24,7 @@ def args():
     p.add_argument("--shared", default="")
     p.add_argument("--studiolights", default="/usr/share/blender/datafiles/studiolights/world")
     p.add_argument("--save", default="", help="folder to save pictures in (README images)")
+    p.add_argument("--size", default="", help="WIDTHxHEIGHTxSAMPLES for the render test (README images)")
     return p.parse_args(argv)
 
 
