@@ -4,7 +4,8 @@ import bpy
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, StringProperty
 
 METHODS = [("variance", "Variance minimization", "Cut where the light's spread is least (Viriyothai & Debevec 2009)"),
-           ("median-cut", "Median cut", "Equal-energy regions (Debevec 2005)")]
+           ("median-cut", "Median cut", "Equal-energy regions (Debevec 2005)"),
+           ("sh", "Spherical harmonics", "Cells of equal SH energy by hierarchical warping (Jarosz 2009, Berger 2011)")]
 LIGHT_TYPES = [("SUN", "Sun", "Sun lamps: parallel light with soft shadows as wide as each region"),
                ("POINT", "Point", "Point lamps on a sphere around the origin")]
 RESOLUTIONS = [("auto", "Auto", "Cuts on a grid at most 2048 pixels wide (exact lights either way)"),

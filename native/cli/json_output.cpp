@@ -25,6 +25,9 @@ nlohmann::json bakeToJson(const std::string& sourcePath, const Probe& probe, con
         {"negative_samples", probe.report().negativeSamples},
         {"non_finite_samples", probe.report().nonFiniteSamples}}},
       {"method", toString(options.method)},
+      {"sh", options.method == Method::SphericalHarmonics
+                 ? nlohmann::json{{"bands", options.shBands}, {"epsilon", options.shEpsilon}, {"depth", options.shDepth}}
+                 : nlohmann::json(nullptr)},
       {"centroid", options.centroid == CentroidWeight::Energy ? "energy" : "energy2"},
       {"requested_lights", options.lights},
       {"horizon_split", result.horizonSplit},

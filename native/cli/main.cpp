@@ -7,6 +7,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -15,17 +16,24 @@
 #include "probelights/error.h"
 #include "probelights/preview.h"
 #include "probelights/probe.h"
+#include "probelights/sh_sampler.h"
+#include "probelights/spherical_harmonics.h"
 
 namespace {
 
 using namespace probelights;
 
-const char* kUsage = R"(usage: probelights bake PROBE [options]
+const char* kUsage = R"(usage: probelights bake PROBE [options]      N lights that carry exactly the probe's energy
+       probelights sh PROBE --bands B [--irradiance] [--window none|hanning|lanczos] [-o sh.json]
+       probelights sample PROBE --bands B --epsilon E --samples N [--depth K] [--seed S] [-o samples.json]
 
-Turns a light probe (any image OpenImageIO reads) into N lights that carry exactly its energy.
+PROBE is any image OpenImageIO reads. sh: real SH coefficients (Sloan order, orthonormal, Condon-Shortley phase,
+theta from +Z) of the radiance, or with --irradiance of the irradiance. sample: directions and pdfs from the
+SH importance sampler (Jarosz et al. 2009 warping with Berger's epsilon clamping) of the probe's luminance.
 
 options:
-  --method median-cut|variance      partition algorithm (default variance)
+  --method median-cut|variance|sh   partition algorithm (default variance); sh = SH importance warping
+  --bands B, --epsilon E            sh: SH bands (default 8) and Berger's epsilon (default 0.01)
   --lights N                        number of lights, N >= 1 (default 16)
   --projection auto|latlong|mirror-ball|angular
                                     how the image maps to the sphere (default auto: lat-long for 2:1 images)
@@ -38,6 +46,7 @@ options:
   -o, --output FILE                 write the lights as JSON ('-' for standard output)
   --preview FILE                    write a picture of the regions and lights (PNG)
   -q, --quiet                       no summary on standard output
+  (sh, sample: --projection and --nonfinite as above; JSON goes to -o FILE or standard output)
 )";
 
 struct UsageError : Error {
@@ -61,6 +70,16 @@ int parseCount(const std::string& flag, const std::string& text) {
   throw UsageError(flag + " expects a whole number, got '" + text + "'");
 }
 
+double parseReal(const std::string& flag, const std::string& text) {
+  try {
+    std::size_t used = 0;
+    double v = std::stod(text, &used);
+    if (used == text.size() && std::isfinite(v)) return v;
+  } catch (const std::exception&) {
+  }
+  throw UsageError(flag + " expects a number, got '" + text + "'");
+}
+
 Args parseBakeArgs(const std::vector<std::string>& argv) {
   Args a;
   for (std::size_t i = 0; i < argv.size(); ++i) {
@@ -79,7 +98,7 @@ Args parseBakeArgs(const std::vector<std::string>& argv) {
     if (arg == "--method") {
       std::string v = next();
       auto m = parseMethod(v);
-      if (!m) throw UsageError("unknown method '" + v + "': use median-cut or variance");
+      if (!m) throw UsageError("unknown method '" + v + "': use median-cut, variance or sh");
       a.bake.method = *m;
     } else if (arg == "--lights" || arg == "-n") {
       a.bake.lights = parseCount(arg, next());
@@ -101,6 +120,10 @@ Args parseBakeArgs(const std::vector<std::string>& argv) {
       auto r = WorkingResolution::parse(v);
       if (!r) throw UsageError("unknown resolution '" + v + "': use full, auto or a width in pixels");
       a.bake.resolution = *r;
+    } else if (arg == "--bands") {
+      a.bake.shBands = parseCount(arg, next());
+    } else if (arg == "--epsilon") {
+      a.bake.shEpsilon = parseReal(arg, next());
     } else if (arg == "--horizon") {
       std::string v = next();
       if (v == "on") a.bake.splitAtHorizon = true;
@@ -185,6 +208,114 @@ int bakeCommand(const std::vector<std::string>& argv) {
   return 0;
 }
 
+// Options shared by the sh and sample commands.
+struct ShArgs {
+  std::string probe, output = "-";
+  ProbeOptions probeOptions;
+  int bands = 0, samples = 0, depth = 8;
+  double epsilon = -1;
+  std::uint64_t seed = 1;
+  bool irradiance = false;
+  ShWindow window = ShWindow::None;
+};
+
+ShArgs parseShArgs(const std::vector<std::string>& argv, bool sampling) {
+  ShArgs a;
+  for (std::size_t i = 0; i < argv.size(); ++i) {
+    std::string arg = argv[i], value;
+    bool inlineValue = false;
+    if (arg.rfind("--", 0) == 0 && arg.find('=') != std::string::npos) {
+      value = arg.substr(arg.find('=') + 1), arg = arg.substr(0, arg.find('=')), inlineValue = true;
+    }
+    auto next = [&]() -> std::string {
+      if (inlineValue) return value;
+      if (i + 1 >= argv.size()) throw UsageError(arg + " needs a value");
+      return argv[++i];
+    };
+    if (arg == "--bands") a.bands = parseCount(arg, next());
+    else if (arg == "--samples" && sampling) a.samples = parseCount(arg, next());
+    else if (arg == "--depth" && sampling) a.depth = parseCount(arg, next());
+    else if (arg == "--seed" && sampling) a.seed = static_cast<std::uint64_t>(parseCount(arg, next()));
+    else if (arg == "--epsilon" && sampling) a.epsilon = parseReal(arg, next());
+    else if (arg == "--irradiance" && !sampling) a.irradiance = true;
+    else if (arg == "--window" && !sampling) {
+      std::string v = next();
+      auto w = parseShWindow(v);
+      if (!w) throw UsageError("unknown window '" + v + "': use none, hanning or lanczos");
+      a.window = *w;
+    } else if (arg == "--projection") {
+      std::string v = next();
+      auto p = parseProjectionChoice(v);
+      if (!p) throw UsageError("unknown projection '" + v + "': use auto, latlong, mirror-ball or angular");
+      a.probeOptions.projection = *p;
+    } else if (arg == "--nonfinite") {
+      std::string v = next();
+      if (v != "error" && v != "zero") throw UsageError("unknown --nonfinite policy '" + v + "': use error or zero");
+      a.probeOptions.nonFinite = v == "zero" ? NonFinitePolicy::Zero : NonFinitePolicy::Error;
+    } else if (arg == "-o" || arg == "--output") a.output = next();
+    else if (!arg.empty() && arg[0] == '-') throw UsageError("unknown option '" + arg + "' (see probelights --help)");
+    else if (a.probe.empty()) a.probe = arg;
+    else throw UsageError("one probe at a time: got '" + a.probe + "' and '" + arg + "'");
+  }
+  if (a.probe.empty()) throw UsageError(std::string("no probe given: probelights ") + (sampling ? "sample" : "sh") + " PROBE");
+  if (a.bands < 1) throw UsageError("--bands B (at least 1) is required");
+  if (sampling && a.samples < 1) throw UsageError("--samples N (at least 1) is required");
+  if (sampling && a.epsilon < 0) throw UsageError("--epsilon E (in [0, 0.5]) is required");
+  return a;
+}
+
+void writeJson(const nlohmann::json& j, const std::string& output) {
+  std::string text = j.dump(output == "-" ? -1 : 1) + "\n";
+  if (output == "-") {
+    std::fwrite(text.data(), 1, text.size(), stdout);
+    return;
+  }
+  std::ofstream out(output);
+  if (!(out << text)) throw Error("cannot write '" + output + "'");
+}
+
+nlohmann::json sourceJson(const std::string& path, const Probe& probe) {
+  return {{"path", path}, {"width", probe.width()}, {"height", probe.height()},
+          {"projection", toString(probe.projection().kind())}};
+}
+
+constexpr const char* kConvention =
+    "real SH, index l(l+1)+m, orthonormal, Condon-Shortley phase (Sloan 2008); theta from +Z, phi = atan2(y, x)";
+
+int shCommand(const std::vector<std::string>& argv) {
+  ShArgs a = parseShArgs(argv, false);
+  Probe probe = Probe::load(a.probe, a.probeOptions);
+  ShCoefficients sh = projectProbe(probe, a.bands);
+  applyWindow(sh, a.window);
+  if (a.irradiance) sh = irradianceCoefficients(sh);
+  nlohmann::json c = nlohmann::json::array();
+  for (const Rgb& v : sh.c) c.push_back(v);
+  writeJson({{"source", sourceJson(a.probe, probe)}, {"bands", a.bands}, {"convention", kConvention},
+             {"quantity", a.irradiance ? "irradiance" : "radiance"},
+             {"window", a.window == ShWindow::None ? "none" : a.window == ShWindow::Hanning ? "hanning" : "lanczos"},
+             {"coefficients", c}},
+            a.output);
+  return 0;
+}
+
+int sampleCommand(const std::vector<std::string>& argv) {
+  ShArgs a = parseShArgs(argv, true);
+  Probe probe = Probe::load(a.probe, a.probeOptions);
+  ShSampler sampler(a.bands, projectProbe(probe, a.bands).luminance(), a.epsilon, a.depth);
+  std::mt19937_64 rng(a.seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  nlohmann::json dirs = nlohmann::json::array(), pdfs = nlohmann::json::array();
+  for (int i = 0; i < a.samples; ++i) {
+    auto s = sampler.sample({u(rng), u(rng)});
+    dirs.push_back({s.direction.x, s.direction.y, s.direction.z});
+    pdfs.push_back(s.pdf);
+  }
+  writeJson({{"source", sourceJson(a.probe, probe)}, {"bands", a.bands}, {"epsilon", a.epsilon}, {"depth", a.depth},
+             {"seed", a.seed}, {"convention", kConvention}, {"directions", dirs}, {"pdf", pdfs}},
+            a.output);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -194,13 +325,19 @@ int main(int argc, char** argv) {
       std::fputs(kUsage, args.empty() ? stderr : stdout);
       return args.empty() ? 2 : 0;
     }
+    if (args[0] == "sh" || args[0] == "sample") {
+      std::vector<std::string> rest(args.begin() + 1, args.end());
+      for (const auto& s : rest)
+        if (s == "--help" || s == "-h") return std::fputs(kUsage, stdout), 0;
+      return args[0] == "sh" ? shCommand(rest) : sampleCommand(rest);
+    }
     if (args[0] == "bake") {
       std::vector<std::string> rest(args.begin() + 1, args.end());
       for (const auto& s : rest)
         if (s == "--help" || s == "-h") return std::fputs(kUsage, stdout), 0;
       return bakeCommand(rest);
     }
-    throw UsageError("unknown command '" + args[0] + "' (probelights bake PROBE; see probelights --help)");
+    throw UsageError("unknown command '" + args[0] + "': use bake, sh or sample (see probelights --help)");
   } catch (const Error& e) {
     std::fprintf(stderr, "probelights: error: %s\n", e.what());
     return 2;

@@ -8,6 +8,10 @@
 #include "probelights/bake.h"
 #include "probelights/error.h"
 #include "probelights/probe.h"
+#include "probelights/sh_sampler.h"
+#include "probelights/spherical_harmonics.h"
+
+#include <random>
 
 namespace py = pybind11;
 using namespace probelights;
@@ -21,10 +25,12 @@ T parseOr(const std::optional<T>& v, const std::string& what, const std::string&
 }
 
 BakeOptions bakeOptions(const std::string& method, int lights, const std::string& centroid,
-                        const std::string& resolution, bool horizon) {
+                        const std::string& resolution, bool horizon, int bands = 8, double epsilon = 0.01) {
   BakeOptions o;
   o.splitAtHorizon = horizon;
-  o.method = parseOr(parseMethod(method), "method", method, "median-cut or variance");
+  o.shBands = bands;
+  o.shEpsilon = epsilon;
+  o.method = parseOr(parseMethod(method), "method", method, "median-cut, variance or sh");
   o.lights = lights;
   if (centroid == "energy") o.centroid = CentroidWeight::Energy;
   else if (centroid == "energy2") o.centroid = CentroidWeight::Energy2;
@@ -87,11 +93,11 @@ py::dict toDict(const Probe& probe, const BakeOptions& o, const BakeResult& r) {
   return d;
 }
 
+using Pixels = py::array_t<float, py::array::forcecast>;
+
 // pixels: float32 H x W (grey) or H x W x C (C = 1, 2 grey+alpha, 3 RGB, 4+ RGB + ignored), rows top to bottom.
 // Any row and pixel strides (e.g. a flipped view arr[::-1]) are read in place; other dtypes are converted.
-py::dict bakePixels(py::array_t<float, py::array::forcecast> pixels, const std::string& projection,
-                    const std::string& method, int lights, const std::string& centroid, const std::string& resolution,
-                    bool horizon, const std::string& nonfinite) {
+ImageView viewOf(Pixels& pixels) {
   if (pixels.ndim() != 2 && pixels.ndim() != 3)
     throw Error("pixels must be a H x W or H x W x C array, got " + std::to_string(pixels.ndim()) + " dimensions");
   const int channels = pixels.ndim() == 3 ? static_cast<int>(pixels.shape(2)) : 1;
@@ -100,11 +106,21 @@ py::dict bakePixels(py::array_t<float, py::array::forcecast> pixels, const std::
   for (int k = 0; k < 2; ++k)
     if (pixels.strides(k) % static_cast<py::ssize_t>(sizeof(float)) != 0)
       pixels = py::array_t<float, py::array::forcecast | py::array::c_style>::ensure(pixels);
-  ImageView view{pixels.data(), static_cast<int>(pixels.shape(1)), static_cast<int>(pixels.shape(0)), channels,
-                 pixels.strides(0) / static_cast<py::ssize_t>(sizeof(float)),
-                 pixels.strides(1) / static_cast<py::ssize_t>(sizeof(float))};
-  const auto kind = parseOr(parseProjection(projection), "projection", projection, "latlong, mirror-ball or angular");
-  const BakeOptions options = bakeOptions(method, lights, centroid, resolution, horizon);
+  return ImageView{pixels.data(), static_cast<int>(pixels.shape(1)), static_cast<int>(pixels.shape(0)), channels,
+                   pixels.strides(0) / static_cast<py::ssize_t>(sizeof(float)),
+                   pixels.strides(1) / static_cast<py::ssize_t>(sizeof(float))};
+}
+
+ProjectionKind projectionOf(const std::string& projection) {
+  return parseOr(parseProjection(projection), "projection", projection, "latlong, mirror-ball or angular");
+}
+
+py::dict bakePixels(Pixels pixels, const std::string& projection, const std::string& method, int lights,
+                    const std::string& centroid, const std::string& resolution, bool horizon, int bands,
+                    double epsilon, const std::string& nonfinite) {
+  const ImageView view = viewOf(pixels);
+  const auto kind = projectionOf(projection);
+  const BakeOptions options = bakeOptions(method, lights, centroid, resolution, horizon, bands, epsilon);
   const NonFinitePolicy policy = nonFinitePolicy(nonfinite);
   std::optional<Probe> probe;
   BakeResult result;
@@ -117,13 +133,13 @@ py::dict bakePixels(py::array_t<float, py::array::forcecast> pixels, const std::
 }
 
 py::dict bakeFile(const std::string& path, const std::string& projection, const std::string& method, int lights,
-                  const std::string& centroid, const std::string& resolution, bool horizon,
+                  const std::string& centroid, const std::string& resolution, bool horizon, int bands, double epsilon,
                   const std::string& nonfinite) {
   ProbeOptions probeOptions;
   probeOptions.projection =
       parseOr(parseProjectionChoice(projection), "projection", projection, "auto, latlong, mirror-ball or angular");
   probeOptions.nonFinite = nonFinitePolicy(nonfinite);
-  const BakeOptions options = bakeOptions(method, lights, centroid, resolution, horizon);
+  const BakeOptions options = bakeOptions(method, lights, centroid, resolution, horizon, bands, epsilon);
   std::optional<Probe> probe;
   BakeResult result;
   {
@@ -136,6 +152,53 @@ py::dict bakeFile(const std::string& path, const std::string& projection, const 
   return d;
 }
 
+// SH coefficients (bands^2 x 3) of the radiance, or of the irradiance.
+py::array_t<double> shProject(Pixels pixels, int bands, const std::string& projection, const std::string& window,
+                              bool irradiance, const std::string& nonfinite) {
+  const ImageView view = viewOf(pixels);
+  const auto kind = projectionOf(projection);
+  const ShWindow w = parseOr(parseShWindow(window), "window", window, "none, hanning or lanczos");
+  const NonFinitePolicy policy = nonFinitePolicy(nonfinite);
+  ShCoefficients sh;
+  {
+    py::gil_scoped_release release;
+    Probe probe(view, kind, policy);
+    sh = projectProbe(probe, bands);
+    applyWindow(sh, w);
+    if (irradiance) sh = irradianceCoefficients(sh);
+  }
+  py::array_t<double> out({static_cast<py::ssize_t>(sh.c.size()), py::ssize_t{3}});
+  auto m = out.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < sh.c.size(); ++i)
+    for (int k = 0; k < 3; ++k) m(i, k) = sh.c[i][k];
+  return out;
+}
+
+// Directions (N, 3) and pdfs (N,) from the SH importance sampler of the probe's luminance; u (N, 2) in [0,1)^2 or,
+// if not given, `samples` points from a seeded generator.
+py::tuple shSample(Pixels pixels, int bands, double epsilon, int samples, int depth, std::uint64_t seed,
+                   const std::string& projection, const std::string& nonfinite) {
+  const ImageView view = viewOf(pixels);
+  const auto kind = projectionOf(projection);
+  const NonFinitePolicy policy = nonFinitePolicy(nonfinite);
+  if (samples < 1) throw Error("asked for " + std::to_string(samples) + " samples: ask for at least 1");
+  py::array_t<double> dirs({static_cast<py::ssize_t>(samples), py::ssize_t{3}}), pdfs(samples);
+  auto d = dirs.mutable_unchecked<2>();
+  auto p = pdfs.mutable_unchecked<1>();
+  {
+    py::gil_scoped_release release;
+    Probe probe(view, kind, policy);
+    ShSampler sampler(bands, projectProbe(probe, bands).luminance(), epsilon, depth);
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (int i = 0; i < samples; ++i) {
+      auto s = sampler.sample({u(rng), u(rng)});
+      d(i, 0) = s.direction.x, d(i, 1) = s.direction.y, d(i, 2) = s.direction.z, p(i) = s.pdf;
+    }
+  }
+  return py::make_tuple(dirs, pdfs);
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_probelights, m) {
@@ -143,13 +206,23 @@ PYBIND11_MODULE(_probelights, m) {
   py::register_exception<Error>(m, "Error", PyExc_ValueError);
   m.def("bake", &bakePixels, py::arg("pixels"), py::kw_only(), py::arg("projection") = "latlong",
         py::arg("method") = "variance", py::arg("lights") = 16, py::arg("centroid") = "energy",
-        py::arg("resolution") = "auto", py::arg("horizon") = false, py::arg("nonfinite") = "error",
+        py::arg("resolution") = "auto", py::arg("horizon") = false, py::arg("bands") = 8, py::arg("epsilon") = 0.01,
+        py::arg("nonfinite") = "error",
         "Bake a probe given as a float32 H x W x C array (rows top to bottom; not copied). Returns a dict of numpy "
         "arrays: direction (N,3), rgb (N,3), solid_angle, angular_radius, energy_share (N,), rect (N,4), total_rgb (3,), "
         "and metadata (notes, timings_ms, cell_size, ...).");
   m.def("bake_file", &bakeFile, py::arg("path"), py::kw_only(), py::arg("projection") = "auto",
         py::arg("method") = "variance", py::arg("lights") = 16, py::arg("centroid") = "energy",
-        py::arg("resolution") = "auto", py::arg("horizon") = false, py::arg("nonfinite") = "error",
+        py::arg("resolution") = "auto", py::arg("horizon") = false, py::arg("bands") = 8, py::arg("epsilon") = 0.01,
+        py::arg("nonfinite") = "error",
         "Read a probe with OpenImageIO and bake it; the same dict as bake(), plus 'path'.");
+  m.def("sh_project", &shProject, py::arg("pixels"), py::kw_only(), py::arg("bands"),
+        py::arg("projection") = "latlong", py::arg("window") = "none", py::arg("irradiance") = false,
+        py::arg("nonfinite") = "error",
+        "Real SH coefficients (bands^2 x 3; Sloan order, orthonormal, Condon-Shortley phase, theta from +Z).");
+  m.def("sh_sample", &shSample, py::arg("pixels"), py::kw_only(), py::arg("bands"), py::arg("epsilon") = 0.01,
+        py::arg("samples") = 1024, py::arg("depth") = 8, py::arg("seed") = 1, py::arg("projection") = "latlong",
+        py::arg("nonfinite") = "error",
+        "(directions (N,3), pdf (N,)) from the SH importance sampler of the probe's luminance (Berger 2011).");
   m.attr("__version__") = "0.1.0";
 }

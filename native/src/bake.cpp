@@ -6,6 +6,7 @@
 #include "parallel.h"
 #include "probelights/error.h"
 #include "probelights/median_cut.h"
+#include "probelights/sh_lights.h"
 #include "probelights/variance_minimization.h"
 
 namespace probelights {
@@ -16,6 +17,8 @@ std::string toString(Method method) {
       return "median-cut";
     case Method::Variance:
       return "variance";
+    case Method::SphericalHarmonics:
+      return "sh";
   }
   return "?";
 }
@@ -23,6 +26,7 @@ std::string toString(Method method) {
 std::optional<Method> parseMethod(const std::string& name) {
   if (name == "median-cut" || name == "mediancut" || name == "median") return Method::MedianCut;
   if (name == "variance" || name == "variance-minimization") return Method::Variance;
+  if (name == "sh" || name == "spherical-harmonics") return Method::SphericalHarmonics;
   return std::nullopt;
 }
 
@@ -45,6 +49,16 @@ BakeResult bake(const Probe& probe, const BakeOptions& options) {
   if (options.lights < 1)
     throw Error("asked for " + std::to_string(options.lights) + " lights: ask for at least 1");
   BakeResult result;
+  if (options.method == Method::SphericalHarmonics) {
+    ShLightResult sh = shLights(probe, {options.lights, options.shBands, options.shEpsilon, options.shDepth});
+    result.lights = std::move(sh.lights);
+    for (const Light& l : result.lights) result.regions.push_back(l.rect);
+    result.regionsAreRects = false;
+    result.notes = std::move(sh.notes);
+    result.timings = {sh.projectMs, sh.assignMs, sh.lightsMs};
+    result.totalRgb = probe.integral();  // an independent pass: the lights must add up to it
+    return result;
+  }
 
   auto t = Clock::now();
   const MomentTable table(probe, options.resolution.cellSize(probe.width()));

@@ -66,7 +66,7 @@ void writePreview(const Probe& probe, const BakeResult& result, const std::strin
   const float border[3] = {0.15f, 0.9f, 0.25f}, lightColour[3] = {1.0f, 0.1f, 0.1f};
   auto sx = [&](int x) { return static_cast<int>(static_cast<int64_t>(x) * pw / W); };
   auto sy = [&](int y) { return static_cast<int>(static_cast<int64_t>(y) * ph / H); };
-  for (const Rect& r : result.regions)
+  for (const Rect& r : result.regionsAreRects ? result.regions : std::vector<Rect>{})
     OIIO::ImageBufAlgo::render_box(buf, sx(r.x0), sy(r.y0), std::max(sx(r.x0), sx(r.x1) - 1),
                                    std::max(sy(r.y0), sy(r.y1) - 1), border, false);
   for (const Light& light : result.lights) {

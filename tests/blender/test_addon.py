@@ -111,6 +111,15 @@ def test_strength_and_rotation_carry_into_the_lights():
     assert np.allclose(irradiance(turned), e0, rtol=1e-5)
 
 
+def test_every_method_bakes():
+    harness.empty_scene()
+    bright_spot_world((40, 20))
+    for method in ("variance", "median-cut", "sh"):
+        lights = bake(count=6, method=method)
+        assert len(lights) == 6, (method, len(lights))
+        assert harness.angle_deg(sun_direction(brightest(lights)), latlong_direction(40, 20, 128, 64)) < 0.5, method
+
+
 def test_node_group_and_reroute():
     harness.empty_scene()
     world = bright_spot_world((100, 10))
@@ -291,7 +300,7 @@ def test_point_lights_give_the_same_irradiance_at_the_origin():
 
 
 harness.run([test_register_unregister, test_real_probes_bake_with_their_energy,
-             test_strength_and_rotation_carry_into_the_lights, test_node_group_and_reroute, test_mirror_ball_image,
+             test_strength_and_rotation_carry_into_the_lights, test_every_method_bakes, test_node_group_and_reroute, test_mirror_ball_image,
              test_sky_texture_world_is_rendered, test_read_and_rendered_worlds_agree,
              test_plain_colour_world_and_its_restore,
              test_rebake_replaces_only_its_own_lights, test_restore_brings_the_world_back_exactly,

@@ -61,5 +61,22 @@ check "preview is a PNG" "head -c 8 '$tmp/p.png' | od -An -c | grep -q 'P   N   
 check "summary shows timings and energy" "grep -q 'time (ms)' '$tmp/summary' && grep -q 'max rel. diff' '$tmp/summary'"
 check "JSON to stdout" "'$bin' bake '$probe' --lights 2 -o - | python3 -c 'import json,sys; json.load(sys.stdin)'"
 
+# Spherical harmonics: coefficients, samples, and the sh light method.
+expect_error "sh without bands" "--bands" sh "$probe"
+expect_error "sample without epsilon" "--epsilon" sample "$probe" --bands 4 --samples 10
+expect_error "sample with a bad epsilon" "epsilon must be in" sample "$probe" --bands 4 --samples 10 --epsilon 0.9
+check "sh writes coefficients" "'$bin' sh '$probe' --bands 4 --irradiance -o '$tmp/sh.json' && python3 - '$tmp/sh.json' <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d['bands'] == 4 and len(d['coefficients']) == 16 and d['quantity'] == 'irradiance', d.keys()
+PY"
+check "sample writes directions and pdfs" "'$bin' sample '$probe' --bands 6 --epsilon 0.01 --samples 100 -o '$tmp/s.json' && python3 - '$tmp/s.json' <<'PY'
+import json, sys, math
+d = json.load(open(sys.argv[1]))
+assert len(d['directions']) == 100 and len(d['pdf']) == 100
+assert all(p > 0 for p in d['pdf']) and all(abs(math.hypot(*v) - 1) < 1e-9 for v in d['directions'])
+PY"
+check "bake --method sh" "'$bin' bake '$probe' --method sh --lights 8 --bands 6 -o '$tmp/shl.json' -q && python3 -c \"import json; d=json.load(open('$tmp/shl.json')); assert d['method']=='sh' and len(d['lights'])==8 and d['sh']['bands']==6\""
+
 echo "$passed passed, $failed failed"
 [[ $failed -eq 0 ]]

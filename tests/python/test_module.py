@@ -102,3 +102,27 @@ def test_the_gil_is_released_and_results_are_deterministic():
         t.join()
     for r in results:
         assert np.array_equal(r["rgb"], reference["rgb"])
+
+
+def test_sh_project_white_furnace_and_irradiance():
+    a = np.full((128, 256, 3), 1.5, np.float32)
+    c = pl.sh_project(a, bands=5)
+    assert c.shape == (25, 3)
+    assert c[0, 0] == pytest.approx(2 * math.sqrt(math.pi) * 1.5, rel=1e-12)
+    assert np.abs(c[1:]).max() < 1e-9
+    e = pl.sh_project(a, bands=3, irradiance=True)
+    assert e[0, 0] * 0.5 / math.sqrt(math.pi) == pytest.approx(math.pi * 1.5, rel=1e-12)  # E = pi L everywhere
+
+
+def test_sh_sample_and_sh_bake(bundled_probe):
+    a = np.zeros((64, 128, 3), np.float32) + 0.1
+    a[10, 30] = 500.0
+    d, p = pl.sh_sample(a, bands=6, epsilon=0.01, samples=500, seed=7)
+    assert d.shape == (500, 3) and p.shape == (500,) and (p > 0).all()
+    assert np.allclose(np.linalg.norm(d, axis=1), 1)
+    d2, p2 = pl.sh_sample(a, bands=6, epsilon=0.01, samples=500, seed=7)
+    assert np.array_equal(d, d2) and np.array_equal(p, p2)
+    r = pl.bake(a, method="sh", lights=8, bands=6)
+    assert len(r["rgb"]) == 8 and np.allclose(r["rgb"].sum(0), r["total_rgb"], rtol=1e-12)
+    with pytest.raises(pl.Error, match="epsilon"):
+        pl.sh_sample(a, bands=4, epsilon=0.7)

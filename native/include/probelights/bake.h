@@ -12,7 +12,7 @@
 
 namespace probelights {
 
-enum class Method { MedianCut, Variance };
+enum class Method { MedianCut, Variance, SphericalHarmonics };
 std::string toString(Method method);
 std::optional<Method> parseMethod(const std::string& name);
 
@@ -24,6 +24,10 @@ struct BakeOptions {
   // Lat-long probes: make the first cut at the horizon so no light mixes sky and ground (partition.h). Off gives
   // the papers' algorithms exactly.
   bool splitAtHorizon = false;
+  // Method::SphericalHarmonics (sh_lights.h): bands of the projection, Berger's epsilon, warping depth.
+  int shBands = 8;
+  double shEpsilon = 0.01;
+  int shDepth = 8;
 };
 
 struct BakeTimings {
@@ -32,7 +36,8 @@ struct BakeTimings {
 
 struct BakeResult {
   std::vector<Light> lights;
-  std::vector<Rect> regions;  // every region in pixels, lit or not (they tile the image)
+  std::vector<Rect> regions;  // every region in pixels (they tile the image), or for "sh" each cell's bounding box
+  bool regionsAreRects = true;
   std::vector<Cut> cuts;      // in pixels, in the order they were made
   int cellSize = 1;
   bool horizonSplit = false;  // whether the first cut is at the horizon

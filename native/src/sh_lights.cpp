@@ -1,0 +1,89 @@
+#include "probelights/sh_lights.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "parallel.h"
+#include "probelights/error.h"
+#include "probelights/pixel_sums.h"
+
+namespace probelights {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+}  // namespace
+
+int stratumOf(std::array<double, 2> u, int count) {
+  const int rows = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(count))));
+  const int base = count / rows, extra = count % rows;
+  // Row i holds n_i = base + (i < extra) cells and has height n_i / count.
+  double top = 0;
+  int first = 0;
+  for (int i = 0; i < rows; ++i) {
+    const int n = base + (i < extra ? 1 : 0);
+    const double bottom = i == rows - 1 ? 1.0 : top + static_cast<double>(n) / count;
+    if (u[0] < bottom || i == rows - 1) return first + std::min(n - 1, static_cast<int>(u[1] * n));
+    top = bottom;
+    first += n;
+  }
+  return count - 1;
+}
+
+ShLightResult shLights(const Probe& probe, const ShLightOptions& o) {
+  if (o.lights < 1) throw Error("asked for " + std::to_string(o.lights) + " lights: ask for at least 1");
+  ShLightResult result;
+  auto t = Clock::now();
+  const ShSampler sampler(o.bands, projectProbe(probe, o.bands).luminance(), o.epsilon, o.depth);
+  result.projectMs = msSince(t);
+
+  // Every pixel goes to the stratum its direction warps back to; blocks of rows in parallel, merged in order.
+  t = Clock::now();
+  const int W = probe.width(), H = probe.height(), blocks = std::min(H, 64);
+  struct Block {
+    std::vector<PixelSums> sums;
+    std::vector<Rect> bounds;
+  };
+  std::vector<Block> partial(blocks);
+  parallelFor(blocks, [&](std::int64_t b) {
+    Block& block = partial[b];
+    block.sums.assign(o.lights, PixelSums{});
+    block.bounds.assign(o.lights, Rect{W, H, 0, 0});
+    std::vector<Vec3> dirs(W);
+    std::vector<double> omega(W);
+    for (int y = static_cast<int>(b * H / blocks); y < static_cast<int>((b + 1) * H / blocks); ++y) {
+      probe.projection().rowGeometry(y, 0, W, dirs, omega);
+      for (int x = 0; x < W; ++x) {
+        if (omega[x] <= 0) continue;
+        const int k = stratumOf(sampler.invert(dirs[x]), o.lights);
+        accumulateRows(probe, y, y + 1, x, x + 1, 1, std::span<PixelSums>(&block.sums[k], 1));
+        Rect& r = block.bounds[k];
+        r = {std::min(r.x0, x), std::min(r.y0, y), std::max(r.x1, x + 1), std::max(r.y1, y + 1)};
+      }
+    }
+  });
+  std::vector<PixelSums> sums(o.lights);
+  std::vector<Rect> bounds(o.lights, Rect{W, H, 0, 0});
+  for (const Block& block : partial)
+    for (int k = 0; k < o.lights; ++k) {
+      sums[k] += block.sums[k];
+      const Rect& r = block.bounds[k];
+      bounds[k] = {std::min(bounds[k].x0, r.x0), std::min(bounds[k].y0, r.y0), std::max(bounds[k].x1, r.x1),
+                   std::max(bounds[k].y1, r.y1)};
+    }
+  result.assignMs = msSince(t);
+
+  t = Clock::now();
+  for (Rect& r : bounds)
+    if (r.empty()) r = {0, 0, 0, 0};
+  result.lights = lightsFromSums(probe, bounds, sums);
+  result.lightsMs = msSince(t);
+  if (static_cast<int>(result.lights.size()) < o.lights)
+    result.notes.push_back("made " + std::to_string(result.lights.size()) + " lights, not " + std::to_string(o.lights) +
+                           ": " + std::to_string(o.lights - result.lights.size()) +
+                           " cells of the SH partition hold no lit pixel");
+  return result;
+}
+
+}  // namespace probelights
