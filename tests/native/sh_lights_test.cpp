@@ -38,7 +38,9 @@ TEST(ShLights, CellsHoldNearlyEqualReconstructedEnergy) {
       energy[stratumOf(sampler.invert(d), n)] += f;
       total += f;
     }
-  for (double e : energy) EXPECT_NEAR(e / total, 1.0 / n, 0.01);
+  double worst = 0;
+  for (double e : energy) worst = std::max(worst, std::abs(e / total * n - 1.0));
+  EXPECT_LT(worst, 0.02);  // measured 1.4 % at 512 x 256  // relative to 1/N; what is left is the pixels' discretization of the cell borders
 }
 
 TEST(ShLights, BakeGivesNLightsThatCarryTheProbesEnergy) {
