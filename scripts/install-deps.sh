@@ -4,7 +4,7 @@
 #   scripts/install-deps.sh --test   also what the tests need (GoogleTest, pytest, Blender, Xvfb)
 set -euo pipefail
 packages=(cmake g++ make pkg-config libopenimageio-dev openimageio-tools nlohmann-json3-dev pybind11-dev python3-dev python3-numpy
-          libbenchmark-dev)
+          libbenchmark-dev fonts-dejavu-core)
 if [[ "${1:-}" == "--test" ]]; then
   packages+=(libgtest-dev googletest python3-pytest blender xvfb xauth)
 fi

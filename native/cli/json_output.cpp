@@ -3,7 +3,7 @@
 namespace probelights::cli {
 
 nlohmann::json bakeToJson(const std::string& sourcePath, const Probe& probe, const BakeOptions& options,
-                          const BakeResult& result, double loadMs) {
+                          const BakeResult& result, double loadMs, const Evaluation& ev) {
   using nlohmann::json;
   json lights = json::array();
   for (const Light& l : result.lights) {
@@ -16,7 +16,22 @@ nlohmann::json bakeToJson(const std::string& sourcePath, const Probe& probe, con
   }
   std::vector<std::string> notes = probe.report().notes;
   notes.insert(notes.end(), result.notes.begin(), result.notes.end());
+  nlohmann::json evaluation = nullptr;
+  if (ev.done) {
+    evaluation = {{"effects", effectsToString(ev.effects)}, {"refit", ev.refit},
+                  {"error", "relative RMS of luminance vs the probe"}};
+    if (ev.effects & kDiffuse) evaluation["diffuse"] = ev.errors.diffuse;
+    if (ev.effects & kShadow) evaluation["shadow"] = ev.errors.shadow;
+    if (ev.effects & kGlossy) evaluation["glossy"] = ev.errors.glossy;
+    if (ev.refit && !ev.autoCount) evaluation["energy_shift"] = ev.energyShift;
+    if (ev.autoCount) {
+      json tried = json::array();
+      for (auto [n, e] : ev.tried) tried.push_back({{"lights", n}, {"worst_error", e}});
+      evaluation["auto_count"] = {{"met", ev.met}, {"lights", options.lights}, {"tried", tried}};
+    }
+  }
   return {
+      {"evaluation", evaluation},
       {"source",
        {{"path", sourcePath},
         {"width", probe.width()},

@@ -6,7 +6,11 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <filesystem>
 #include <map>
+#include <optional>
+#include <sstream>
+#include <tuple>
 #include <random>
 #include <string>
 #include <vector>
@@ -18,14 +22,19 @@
 #include "probelights/probe.h"
 #include "probelights/sh_sampler.h"
 #include "probelights/spherical_harmonics.h"
+#include "probelights/evaluate.h"
+#include "probelights/tradeoff.h"
 
 namespace {
 
 using namespace probelights;
+using cli::Evaluation;
 
 const char* kUsage = R"(usage: probelights bake PROBE [options]      N lights that carry exactly the probe's energy
        probelights sh PROBE --bands B [--irradiance] [--window none|hanning|lanczos] [-o sh.json]
        probelights sample PROBE --bands B --epsilon E --samples N [--depth K] [--seed S] [-o samples.json]
+       probelights tradeoff PROBE [--effects diffuse,shadow,glossy] [--counts 1,2,4,...] [--methods ...]
+                              [--no-refit] [-o tradeoff.json] [--plot tradeoff.png]
 
 PROBE is any image OpenImageIO reads. sh: real SH coefficients (Sloan order, orthonormal, Condon-Shortley phase,
 theta from +Z) of the radiance, or with --irradiance of the irradiance. sample: directions and pdfs from the
@@ -45,6 +54,11 @@ options:
   --nonfinite error|zero            NaN/Inf pixels: refuse the probe (default) or read them as 0
   -o, --output FILE                 write the lights as JSON ('-' for standard output)
   --preview FILE                    write a picture of the regions and lights (PNG)
+  --refit                           re-solve the lights' colours (non-negative least squares) so their
+                                    diffuse irradiance matches the probe's; reports the energy shift
+  --max-error E                     the fewest lights whose error is at most E (e.g. 1% or 0.01) on --effects
+  --effects diffuse,shadow,glossy   effects to evaluate (default diffuse); evaluating prints their errors
+  --evaluate                        evaluate the lights on --effects without choosing the count
   -q, --quiet                       no summary on standard output
   (sh, sample: --projection and --nonfinite as above; JSON goes to -o FILE or standard output)
 )";
@@ -53,12 +67,33 @@ struct UsageError : Error {
   using Error::Error;
 };
 
+double parseReal(const std::string& flag, const std::string& text) {
+  try {
+    std::size_t used = 0;
+    double v = std::stod(text, &used);
+    if (used == text.size() && std::isfinite(v)) return v;
+  } catch (const std::exception&) {
+  }
+  throw UsageError(flag + " expects a number, got '" + text + "'");
+}
+
 struct Args {
   std::string probe, output, preview;
   ProbeOptions probeOptions;
   BakeOptions bake;
   bool quiet = false;
+  bool refit = false, evaluate = false;
+  double maxError = 0;  // 0: not asked
+  unsigned effects = kDiffuse;
 };
+
+double parseTolerance(const std::string& flag, const std::string& text) {
+  bool percent = !text.empty() && text.back() == '%';
+  double v = parseReal(flag, percent ? text.substr(0, text.size() - 1) : text);
+  if (percent) v /= 100;
+  if (!(v > 0 && v < 1)) throw UsageError(flag + " takes a tolerance such as 1% or 0.01, got '" + text + "'");
+  return v;
+}
 
 int parseCount(const std::string& flag, const std::string& text) {
   try {
@@ -70,15 +105,6 @@ int parseCount(const std::string& flag, const std::string& text) {
   throw UsageError(flag + " expects a whole number, got '" + text + "'");
 }
 
-double parseReal(const std::string& flag, const std::string& text) {
-  try {
-    std::size_t used = 0;
-    double v = std::stod(text, &used);
-    if (used == text.size() && std::isfinite(v)) return v;
-  } catch (const std::exception&) {
-  }
-  throw UsageError(flag + " expects a number, got '" + text + "'");
-}
 
 Args parseBakeArgs(const std::vector<std::string>& argv) {
   Args a;
@@ -143,6 +169,14 @@ Args parseBakeArgs(const std::vector<std::string>& argv) {
       a.preview = next();
     } else if (arg == "-q" || arg == "--quiet") {
       a.quiet = true;
+    } else if (arg == "--refit") {
+      a.refit = true;
+    } else if (arg == "--evaluate") {
+      a.evaluate = true;
+    } else if (arg == "--max-error") {
+      a.maxError = parseTolerance(arg, next());
+    } else if (arg == "--effects") {
+      a.effects = parseEffects(next());
     } else if (!arg.empty() && arg[0] == '-' && arg != "-") {
       throw UsageError("unknown option '" + arg + "' (see probelights --help)");
     } else if (a.probe.empty()) {
@@ -157,7 +191,7 @@ Args parseBakeArgs(const std::vector<std::string>& argv) {
   return a;
 }
 
-void printSummary(const Args& a, const Probe& probe, const BakeResult& r, double loadMs) {
+void printSummary(const Args& a, const Probe& probe, const BakeResult& r, double loadMs, const Evaluation& ev) {
   std::printf("probe      %s  %dx%d %s\n", a.probe.c_str(), probe.width(), probe.height(),
               toString(probe.projection().kind()).c_str());
   for (const auto& note : probe.report().notes) std::printf("note       %s\n", note.c_str());
@@ -181,6 +215,14 @@ void printSummary(const Args& a, const Probe& probe, const BakeResult& r, double
   std::printf(
       "\nenergy     probe integral (%.6g, %.6g, %.6g), lights sum (%.6g, %.6g, %.6g), max rel. diff %.1e\n",
       r.totalRgb[0], r.totalRgb[1], r.totalRgb[2], sum[0], sum[1], sum[2], worst);
+  if (ev.done) {
+    std::printf("error      ");
+    if (ev.effects & kDiffuse) std::printf("diffuse %.2f%%  ", 100 * ev.errors.diffuse);
+    if (ev.effects & kShadow) std::printf("shadow %.2f%%  ", 100 * ev.errors.shadow);
+    if (ev.effects & kGlossy) std::printf("glossy %.2f%%  ", 100 * ev.errors.glossy);
+    std::printf("(relative RMS of luminance vs the probe)%s\n", ev.refit ? ", lights refit" : "");
+    if (ev.refit && !ev.autoCount) std::printf("refit      energy shift %+.2f%%\n", 100 * ev.energyShift);
+  }
   std::printf("time (ms)  load %.1f  tables %.1f  partition %.1f  lights %.1f  (bake %.1f)\n", loadMs,
               r.timings.tablesMs, r.timings.partitionMs, r.timings.lightsMs,
               r.timings.tablesMs + r.timings.partitionMs + r.timings.lightsMs);
@@ -191,10 +233,35 @@ int bakeCommand(const std::vector<std::string>& argv) {
   auto t0 = std::chrono::steady_clock::now();
   Probe probe = Probe::load(a.probe, a.probeOptions);
   double loadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  BakeResult result = bake(probe, a.bake);
+  const bool evaluating = a.evaluate || a.refit || a.maxError > 0;
+  if (a.refit) a.effects |= kDiffuse;
+  std::optional<Evaluator> evaluator;
+  if (evaluating) evaluator.emplace(probe, a.effects, EvaluatorOptions{2048, a.refit});
+  BakeResult result;
+  Evaluation evaluation;
+  if (a.maxError > 0) {
+    AutoCountResult chosen = autoCount(probe, *evaluator, a.bake, a.maxError, a.refit);
+    result = std::move(chosen.bake);
+    evaluation.autoCount = true, evaluation.met = chosen.met, evaluation.tried = chosen.tried;
+    a.bake.lights = chosen.lights;
+    char line[200];
+    std::snprintf(line, sizeof line, "%s: %d lights, worst error %.2f%% (asked at most %.2f%%)",
+                  chosen.met ? "auto count" : "auto count missed", chosen.lights,
+                  100 * chosen.errors.worst(a.effects), 100 * a.maxError);
+    result.notes.push_back(line);
+  } else {
+    result = bake(probe, a.bake);
+    if (a.refit) {
+      if (result.lights.size() > kMaxRefitLights) throw UsageError("--refit takes at most 256 lights");
+      result.lights = refitIrradiance(*evaluator, result.lights, &evaluation.energyShift);
+    }
+  }
+  if (evaluating) evaluation.errors = evaluator->evaluate(result.lights), evaluation.done = true;
+  evaluation.refit = a.refit;
+  evaluation.effects = a.effects;
 
   if (!a.output.empty()) {
-    std::string text = cli::bakeToJson(a.probe, probe, a.bake, result, loadMs).dump(2) + "\n";
+    std::string text = cli::bakeToJson(a.probe, probe, a.bake, result, loadMs, evaluation).dump(2) + "\n";
     if (a.output == "-") {
       std::fwrite(text.data(), 1, text.size(), stdout);
       a.quiet = true;
@@ -204,7 +271,7 @@ int bakeCommand(const std::vector<std::string>& argv) {
     }
   }
   if (!a.preview.empty()) writePreview(probe, result, a.preview);
-  if (!a.quiet) printSummary(a, probe, result, loadMs);
+  if (!a.quiet) printSummary(a, probe, result, loadMs, evaluation);
   return 0;
 }
 
@@ -316,6 +383,88 @@ int sampleCommand(const std::vector<std::string>& argv) {
   return 0;
 }
 
+std::vector<std::string> splitList(const std::string& text) {
+  std::vector<std::string> items;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) items.push_back(item);
+  return items;
+}
+
+int tradeoffCommand(const std::vector<std::string>& argv) {
+  std::string probePath, output, plot;
+  ProbeOptions probeOptions;
+  TradeoffOptions options;
+  unsigned effects = kDiffuse | kShadow;
+  for (std::size_t i = 0; i < argv.size(); ++i) {
+    const std::string& arg = argv[i];
+    auto next = [&]() -> std::string {
+      if (i + 1 >= argv.size()) throw UsageError(arg + " needs a value");
+      return argv[++i];
+    };
+    if (arg == "--effects") effects = parseEffects(next());
+    else if (arg == "--counts") {
+      options.counts.clear();
+      for (const auto& c : splitList(next())) {
+        int n = parseCount("--counts", c);
+        if (n < 1) throw UsageError("--counts takes light counts of at least 1");
+        options.counts.push_back(n);
+      }
+    } else if (arg == "--methods") {
+      options.methods.clear();
+      for (const auto& m : splitList(next())) {
+        auto method = parseMethod(m);
+        if (!method) throw UsageError("unknown method '" + m + "': use median-cut, variance or sh");
+        options.methods.push_back(*method);
+      }
+    } else if (arg == "--no-refit") options.refit = false;
+    else if (arg == "-o" || arg == "--output") output = next();
+    else if (arg == "--plot") plot = next();
+    else if (arg == "--projection") {
+      std::string v = next();
+      auto p = parseProjectionChoice(v);
+      if (!p) throw UsageError("unknown projection '" + v + "': use auto, latlong, mirror-ball or angular");
+      probeOptions.projection = *p;
+    } else if (!arg.empty() && arg[0] == '-') throw UsageError("unknown option '" + arg + "' (see probelights --help)");
+    else if (probePath.empty()) probePath = arg;
+    else throw UsageError("one probe at a time: got '" + probePath + "' and '" + arg + "'");
+  }
+  if (probePath.empty()) throw UsageError("no probe given: probelights tradeoff PROBE");
+  auto t0 = std::chrono::steady_clock::now();
+  Probe probe = Probe::load(probePath, probeOptions);
+  Evaluator evaluator(probe, effects, EvaluatorOptions{2048, options.refit});
+  double truthMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  auto rows = tradeoff(probe, evaluator, options);
+  std::printf("probe %s %dx%d; effects %s; ground truth %.0f ms; error = relative RMS of luminance\n\n",
+              probePath.c_str(), probe.width(), probe.height(), effectsToString(effects).c_str(), truthMs);
+  std::printf("%-11s %6s %6s %5s %10s", "method", "lights", "res", "refit", "bake ms");
+  for (auto [bit, name] : {std::pair{kDiffuse, "diffuse"}, std::pair{kShadow, "shadow"}, std::pair{kGlossy, "glossy"}})
+    if (effects & bit) std::printf(" %9s", name);
+  std::printf("\n");
+  nlohmann::json table = nlohmann::json::array();
+  for (const TradeoffRow& r : rows) {
+    std::printf("%-11s %6d %6s %5s %10.2f", toString(r.method).c_str(), r.made, r.resolution.c_str(),
+                r.refit ? "yes" : "no", r.bakeMs);
+    nlohmann::json row{{"method", toString(r.method)}, {"lights", r.lights}, {"made", r.made},
+                       {"resolution", r.resolution}, {"refit", r.refit}, {"bake_ms", r.bakeMs}};
+    for (auto [bit, name, value] : {std::tuple{kDiffuse, "diffuse", r.errors.diffuse},
+                                    std::tuple{kShadow, "shadow", r.errors.shadow},
+                                    std::tuple{kGlossy, "glossy", r.errors.glossy}})
+      if (effects & bit) std::printf(" %8.3f%%", 100 * value), row[name] = value;
+    std::printf("\n");
+    table.push_back(row);
+  }
+  if (!output.empty())
+    writeJson({{"source", sourceJson(probePath, probe)}, {"effects", effectsToString(effects)},
+               {"error", "relative RMS of luminance over the effect's sample points"}, {"rows", table}},
+              output);
+  if (!plot.empty()) {
+    writeTradeoffPlot(rows, effects, std::filesystem::path(probePath).filename().string() + ": error vs bake time", plot);
+    std::printf("\nplot: %s\n", plot.c_str());
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -324,6 +473,12 @@ int main(int argc, char** argv) {
     if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
       std::fputs(kUsage, args.empty() ? stderr : stdout);
       return args.empty() ? 2 : 0;
+    }
+    if (args[0] == "tradeoff") {
+      std::vector<std::string> rest(args.begin() + 1, args.end());
+      for (const auto& s : rest)
+        if (s == "--help" || s == "-h") return std::fputs(kUsage, stdout), 0;
+      return tradeoffCommand(rest);
     }
     if (args[0] == "sh" || args[0] == "sample") {
       std::vector<std::string> rest(args.begin() + 1, args.end());
@@ -337,7 +492,7 @@ int main(int argc, char** argv) {
         if (s == "--help" || s == "-h") return std::fputs(kUsage, stdout), 0;
       return bakeCommand(rest);
     }
-    throw UsageError("unknown command '" + args[0] + "': use bake, sh or sample (see probelights --help)");
+    throw UsageError("unknown command '" + args[0] + "': use bake, sh, sample or tradeoff (see probelights --help)");
   } catch (const Error& e) {
     std::fprintf(stderr, "probelights: error: %s\n", e.what());
     return 2;

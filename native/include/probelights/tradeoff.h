@@ -1,0 +1,51 @@
+// What accuracy costs in time: bakes over a grid of knobs (methods x light counts x working resolutions x with and
+// without the irradiance refit), each evaluated on the effects asked for; and the auto count, the fewest lights that
+// meet a tolerance.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "probelights/bake.h"
+#include "probelights/evaluate.h"
+
+namespace probelights {
+
+struct TradeoffRow {
+  Method method;
+  int lights = 0;        // asked for
+  int made = 0;          // made
+  std::string resolution;
+  bool refit = false;
+  double bakeMs = 0;     // tables + partition + lights (+ refit)
+  EffectErrors errors;
+};
+
+struct TradeoffOptions {
+  std::vector<Method> methods{Method::MedianCut, Method::Variance, Method::SphericalHarmonics};
+  std::vector<int> counts{1, 2, 4, 8, 16, 32, 64, 128, 256, 512, 1024};
+  std::vector<WorkingResolution> resolutions{{WorkingResolution::Mode::Full, 0}, {WorkingResolution::Mode::Width, 256}};
+  bool refit = true;  // also evaluate each bake refit (counts up to kMaxRefitLights)
+};
+
+std::vector<TradeoffRow> tradeoff(const Probe& probe, const Evaluator& evaluator, const TradeoffOptions& options);
+
+// Writes error (the worst of the evaluated effects, %) against bake time (ms), log axes, one curve per method
+// (refit curves lighter), as a PNG with OpenImageIO.
+void writeTradeoffPlot(const std::vector<TradeoffRow>& rows, unsigned effects, const std::string& title,
+                       const std::string& path);
+
+struct AutoCountResult {
+  BakeResult bake;
+  EffectErrors errors;
+  int lights = 0;
+  bool met = false;  // false: even the largest count tried missed the tolerance
+  std::vector<std::pair<int, double>> tried;  // (lights, worst error)
+};
+
+// The smallest N (doubling, then bisecting) whose worst error over the evaluator's effects is <= tolerance, up to
+// maxLights; with refit, each candidate is refit first.
+AutoCountResult autoCount(const Probe& probe, const Evaluator& evaluator, BakeOptions options, double tolerance,
+                          bool refit, int maxLights = 1024);
+
+}  // namespace probelights

@@ -1,0 +1,127 @@
+// The evaluator (ground truth against brute force and closed forms), the irradiance refit and the auto count.
+#include "probelights/evaluate.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "probelights/error.h"
+#include "probelights/tradeoff.h"
+#include "test_probes.h"
+
+namespace probelights {
+namespace {
+
+TEST(Evaluator, UniformProbeClosedForms) {
+  const double L = 2.0;
+  auto t = testing::uniformProbe(1024, 512, ProjectionKind::LatLong, {L, L, L});
+  Evaluator ev(t.probe, kDiffuse | kShadow);
+  for (const Rgb& e : ev.diffuseTruth()) EXPECT_NEAR(e[0], kPi * L, 1e-9);  // irradiance pi L on every normal
+  // A ground point sees the upper hemisphere (pi L) less the cap of the unit sphere resting on the plane: half-angle
+  // a = asin(1 / D), axis at angle b from the zenith; the cap touches the horizon, so its projected solid angle is
+  // pi sin^2(a) cos(b).
+  for (std::size_t i = 0; i < ev.groundPoints().size(); ++i) {
+    const Vec3 p = ev.groundPoints()[i], toCentre = Vec3{0, 0, 1} - p;
+    const double D = toCentre.length(), sina = 1 / D, cosb = toCentre.z / D;
+    const double expected = kPi * L * (1 - sina * sina * cosb);
+    EXPECT_NEAR(ev.shadowTruth()[i][0], expected, 4e-3 * expected) << p.x << "," << p.y;
+  }
+}
+
+TEST(Evaluator, GroundTruthMatchesABruteForceSum) {
+  const int W = 32, H = 16;
+  auto t = testing::makeProbe(W, H, ProjectionKind::LatLong,
+                              [](int x, int y) { return Rgb{0.1 + x % 5, 0.2 + y % 3, 1.0 + (x * y) % 7}; });
+  Evaluator ev(t.probe, kDiffuse | kShadow | kGlossy);
+  const Projection& pr = t.probe.projection();
+  for (std::size_t i = 0; i < ev.normals().size(); i += 17) {
+    Rgb diffuse{}, shadow{};
+    for (int y = 0; y < H; ++y)
+      for (int x = 0; x < W; ++x) {
+        Vec3 d = *pr.direction((x + 0.5) / W, (y + 0.5) / H);
+        Rgb L = t.probe.radiance(x, y);
+        double omega = pr.pixelSolidAngle(x, y);
+        double cn = std::max(0.0, dot(ev.normals()[i], d));
+        const Vec3 p = ev.groundPoints()[i], o = p - Vec3{0, 0, 1};
+        double b = dot(d, o), disc = b * b - (dot(o, o) - 1);
+        bool blocked = b < 0 && disc > 0;
+        for (int k = 0; k < 3; ++k) {
+          diffuse[k] += L[k] * cn * omega;
+          if (d.z > 0 && !blocked) shadow[k] += L[k] * d.z * omega;
+        }
+      }
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_NEAR(ev.diffuseTruth()[i][k], diffuse[k], 1e-12 * (1 + diffuse[k]));
+      EXPECT_NEAR(ev.shadowTruth()[i][k], shadow[k], 1e-12 * (1 + shadow[k]));
+    }
+  }
+}
+
+TEST(Evaluator, OneLightPerPixelIsExactAndFewLightsAreNot) {
+  auto t = testing::makeProbe(16, 8, ProjectionKind::LatLong,
+                              [](int x, int y) { return Rgb{1.0 + x, 0.5 + y, 2.0}; });
+  Evaluator ev(t.probe, kDiffuse | kShadow | kGlossy);
+  BakeOptions o;
+  o.lights = 16 * 8;
+  auto all = bake(t.probe, o);
+  auto e = ev.evaluate(all.lights);
+  EXPECT_LT(e.diffuse, 1e-12);
+  EXPECT_LT(e.shadow, 1e-12);
+  EXPECT_LT(e.glossy, 1e-12);
+  o.lights = 2;
+  auto few = ev.evaluate(bake(t.probe, o).lights);
+  EXPECT_GT(few.diffuse, 1e-3);
+  EXPECT_TRUE(std::isnan(Evaluator(t.probe, kDiffuse).evaluate(all.lights).shadow));  // only what was asked
+}
+
+TEST(Nnls, SolvesAKnownNonNegativeProblem) {
+  // A x = b with x* = (1, 0, 2): NNLS finds it; with b pushing x2 negative it clamps to 0.
+  const std::vector<double> A = {1, 0, 1, 0, 1, 0, 1, 1, 0, 0, 0, 1};
+  auto x = nonNegativeLeastSquares(A, 4, 3, {3, 0, 1, 2});
+  EXPECT_NEAR(x[0], 1, 1e-9);  // the tiny ridge that keeps rank-deficient solves stable
+  EXPECT_NEAR(x[1], 0, 1e-12);
+  EXPECT_NEAR(x[2], 2, 1e-9);
+  auto y = nonNegativeLeastSquares(A, 4, 3, {1, -5, 1, 0});
+  for (double v : y) EXPECT_GE(v, 0.0);
+  EXPECT_NEAR(y[1], 0, 1e-12);
+}
+
+TEST(Refit, LowersTheDiffuseErrorOnRealProbes) {
+  Probe probe = Probe::load(PROBELIGHTS_BUNDLED_PROBE);
+  Evaluator ev(probe, kDiffuse | kShadow, {2048, true});
+  for (int n : {16, 64}) {
+    BakeOptions o;
+    o.lights = n;
+    auto lights = bake(probe, o).lights;
+    double shift = 0;
+    auto refit = refitIrradiance(ev, lights, &shift);
+    EXPECT_LT(ev.evaluate(refit).diffuse, ev.evaluate(lights).diffuse);
+    EXPECT_LT(std::abs(shift), 0.02);
+    for (const Light& l : refit)
+      for (double c : l.rgb) EXPECT_GE(c, 0.0);
+  }
+  EXPECT_THROW(refitIrradiance(Evaluator(probe, kDiffuse), std::vector<Light>(3)), Error);  // not made for refit
+}
+
+TEST(AutoCount, FindsTheSmallestCountThatMeetsTheTolerance) {
+  Probe probe = Probe::load(PROBELIGHTS_BUNDLED_PROBE);
+  Evaluator ev(probe, kDiffuse);
+  auto r = autoCount(probe, ev, BakeOptions{}, 0.02, false);
+  ASSERT_TRUE(r.met);
+  EXPECT_LE(r.errors.diffuse, 0.02);
+  EXPECT_EQ(static_cast<int>(r.bake.lights.size()), r.lights);
+  BakeOptions fewer;
+  fewer.lights = r.lights - 1;
+  EXPECT_GT(ev.evaluate(bake(probe, fewer).lights).diffuse, 0.02);  // one light fewer misses it
+  auto never = autoCount(probe, ev, BakeOptions{}, 1e-9, false, 8);
+  EXPECT_FALSE(never.met);
+}
+
+TEST(Effects, ParseAndPrint) {
+  EXPECT_EQ(parseEffects("diffuse,shadow"), kDiffuse | kShadow);
+  EXPECT_EQ(effectsToString(kDiffuse | kGlossy), "diffuse,glossy");
+  EXPECT_THROW(parseEffects("caustics"), Error);
+}
+
+}  // namespace
+}  // namespace probelights
