@@ -11,8 +11,11 @@ LIGHT_TYPES = [("SUN", "Sun", "Sun lamps: parallel light with soft shadows as wi
 RESOLUTIONS = [("auto", "Auto", "Cuts on a grid at most 2048 pixels wide (exact lights either way)"),
                ("full", "Full", "Cuts at full resolution, as the papers (slower for 4K and larger probes)"),
                ("512", "512", "Cuts on a 512-pixel-wide grid: fastest")]
+COUNT_MODES = [("COUNT", "Count", "Make this many lights"),
+               ("TOLERANCE", "Max error", "Make the fewest lights whose estimated diffuse and shadow error is within the "
+                                          "tolerance")]
 SETTING_NAMES = ("count", "method", "light_type", "resolution", "soft_shadows", "distance", "replace_diffuse",
-                 "replace_reflections", "replace_background")
+                 "replace_reflections", "replace_background", "count_mode", "max_error", "refit")
 
 
 def bake_settings():
@@ -33,6 +36,12 @@ def bake_settings():
                                             description="Lights give reflections; the world no longer does"),
         "replace_background": BoolProperty(name="Background", default=False,
                                            description="Hide the world from the camera"),
+        "count_mode": EnumProperty(name="Count by", items=COUNT_MODES, default="COUNT"),
+        "max_error": FloatProperty(name="Max error", default=2.0, min=0.05, max=50.0, subtype="PERCENTAGE",
+                                   description="Largest estimated diffuse/shadow error (relative RMS) to accept"),
+        "refit": BoolProperty(name="Refit intensities", default=False,
+                              description="Re-solve the lights' colours so their diffuse light matches the world's "
+                                          "(halves the diffuse error; moves < 1 % of the energy)"),
     }
 
 
@@ -44,6 +53,8 @@ class ProbeLightsSettings(bpy.types.PropertyGroup):
         "last_ms": FloatProperty(default=0.0),
         "last_source": StringProperty(default=""),
         "last_notes": StringProperty(default=""),
+        "last_diffuse_error": FloatProperty(default=-1.0),
+        "last_shadow_error": FloatProperty(default=-1.0),
     }
 
 

@@ -9,7 +9,10 @@ def draw_panel(layout, context):
     settings = context.scene.probe_lights
     col = layout.column(align=True)
     col.prop(settings, "method")
-    col.prop(settings, "count")
+    row = col.row(align=True)
+    row.prop(settings, "count_mode", expand=True)
+    col.prop(settings, "count" if settings.count_mode == "COUNT" else "max_error")
+    col.prop(settings, "refit")
     col.prop(settings, "light_type")
     if settings.light_type == "SUN":
         col.prop(settings, "soft_shadows")
@@ -33,6 +36,9 @@ def draw_panel(layout, context):
         col.label(text="%d lights, %.1f %% of the energy, %.0f ms" % (settings.last_count, settings.last_energy,
                                                                     settings.last_ms))
         col.label(text="From " + settings.last_source)
+        if settings.last_diffuse_error >= 0:
+            col.label(text="Estimated error: diffuse %.2f %%, shadow %.2f %%" % (settings.last_diffuse_error,
+                                                                            settings.last_shadow_error))
         if settings.last_notes:
             col.label(text=settings.last_notes, icon="INFO")
 

@@ -233,32 +233,14 @@ int bakeCommand(const std::vector<std::string>& argv) {
   auto t0 = std::chrono::steady_clock::now();
   Probe probe = Probe::load(a.probe, a.probeOptions);
   double loadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  const bool evaluating = a.evaluate || a.refit || a.maxError > 0;
-  if (a.refit) a.effects |= kDiffuse;
-  std::optional<Evaluator> evaluator;
-  if (evaluating) evaluator.emplace(probe, a.effects, EvaluatorOptions{2048, a.refit});
-  BakeResult result;
+  EvaluatedBake done = bakeEvaluated(probe, a.bake, {a.effects, a.evaluate, a.refit, a.maxError, 2048});
+  BakeResult result = std::move(done.bake);
+  a.bake.lights = done.lights;
   Evaluation evaluation;
-  if (a.maxError > 0) {
-    AutoCountResult chosen = autoCount(probe, *evaluator, a.bake, a.maxError, a.refit);
-    result = std::move(chosen.bake);
-    evaluation.autoCount = true, evaluation.met = chosen.met, evaluation.tried = chosen.tried;
-    a.bake.lights = chosen.lights;
-    char line[200];
-    std::snprintf(line, sizeof line, "%s: %d lights, worst error %.2f%% (asked at most %.2f%%)",
-                  chosen.met ? "auto count" : "auto count missed", chosen.lights,
-                  100 * chosen.errors.worst(a.effects), 100 * a.maxError);
-    result.notes.push_back(line);
-  } else {
-    result = bake(probe, a.bake);
-    if (a.refit) {
-      if (result.lights.size() > kMaxRefitLights) throw UsageError("--refit takes at most 256 lights");
-      result.lights = refitIrradiance(*evaluator, result.lights, &evaluation.energyShift);
-    }
-  }
-  if (evaluating) evaluation.errors = evaluator->evaluate(result.lights), evaluation.done = true;
+  evaluation.done = done.evaluated, evaluation.autoCount = done.autoCount, evaluation.met = done.met;
+  evaluation.tried = done.tried, evaluation.errors = done.errors, evaluation.energyShift = done.energyShift;
+  evaluation.effects = done.effects;
   evaluation.refit = a.refit;
-  evaluation.effects = a.effects;
 
   if (!a.output.empty()) {
     std::string text = cli::bakeToJson(a.probe, probe, a.bake, result, loadMs, evaluation).dump(2) + "\n";

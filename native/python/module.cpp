@@ -10,6 +10,8 @@
 #include "probelights/probe.h"
 #include "probelights/sh_sampler.h"
 #include "probelights/spherical_harmonics.h"
+#include "probelights/evaluate.h"
+#include "probelights/tradeoff.h"
 
 #include <random>
 
@@ -115,21 +117,46 @@ ProjectionKind projectionOf(const std::string& projection) {
   return parseOr(parseProjection(projection), "projection", projection, "latlong, mirror-ball or angular");
 }
 
+// The accuracy options (tradeoff.h): errors are added to the dict as "errors" {effect: rms}, "energy_shift",
+// "auto_count" {met, lights, tried}.
+void addEvaluation(py::dict& d, const EvaluatedBake& e) {
+  if (!e.evaluated) return;
+  py::dict errors;
+  if (e.effects & kDiffuse) errors["diffuse"] = e.errors.diffuse;
+  if (e.effects & kShadow) errors["shadow"] = e.errors.shadow;
+  if (e.effects & kGlossy) errors["glossy"] = e.errors.glossy;
+  d["errors"] = errors;
+  d["energy_shift"] = e.energyShift;
+  if (e.autoCount) d["auto_count"] = py::dict(py::arg("met") = e.met, py::arg("lights") = e.lights, py::arg("tried") = e.tried);
+}
+
+AccuracyOptions accuracyOptions(const std::string& effects, bool evaluate, bool refit, double maxError,
+                                int evaluatorWidth) {
+  if (maxError < 0 || maxError >= 1) throw Error("max_error is a fraction in (0, 1), e.g. 0.01 for 1 %");
+  return {parseEffects(effects), evaluate, refit, maxError, evaluatorWidth};
+}
+
 py::dict bakePixels(Pixels pixels, const std::string& projection, const std::string& method, int lights,
                     const std::string& centroid, const std::string& resolution, bool horizon, int bands,
-                    double epsilon, const std::string& nonfinite) {
+                    double epsilon, const std::string& effects, bool evaluate, bool refit, double maxError,
+                    int evaluatorWidth, const std::string& nonfinite) {
   const ImageView view = viewOf(pixels);
   const auto kind = projectionOf(projection);
   const BakeOptions options = bakeOptions(method, lights, centroid, resolution, horizon, bands, epsilon);
   const NonFinitePolicy policy = nonFinitePolicy(nonfinite);
+  const AccuracyOptions accuracy = accuracyOptions(effects, evaluate, refit, maxError, evaluatorWidth);
   std::optional<Probe> probe;
-  BakeResult result;
+  EvaluatedBake result;
   {
     py::gil_scoped_release release;
     probe.emplace(view, kind, policy);
-    result = bake(*probe, options);
+    result = bakeEvaluated(*probe, options, accuracy);
   }
-  return toDict(*probe, options, result);
+  BakeOptions used = options;
+  used.lights = result.lights;
+  py::dict d = toDict(*probe, used, result.bake);
+  addEvaluation(d, result);
+  return d;
 }
 
 py::dict bakeFile(const std::string& path, const std::string& projection, const std::string& method, int lights,
@@ -207,10 +234,11 @@ PYBIND11_MODULE(_probelights, m) {
   m.def("bake", &bakePixels, py::arg("pixels"), py::kw_only(), py::arg("projection") = "latlong",
         py::arg("method") = "variance", py::arg("lights") = 16, py::arg("centroid") = "energy",
         py::arg("resolution") = "auto", py::arg("horizon") = false, py::arg("bands") = 8, py::arg("epsilon") = 0.01,
-        py::arg("nonfinite") = "error",
+        py::arg("effects") = "diffuse", py::arg("evaluate") = false, py::arg("refit") = false,
+        py::arg("max_error") = 0.0, py::arg("evaluator_width") = 2048, py::arg("nonfinite") = "error",
         "Bake a probe given as a float32 H x W x C array (rows top to bottom; not copied). Returns a dict of numpy "
         "arrays: direction (N,3), rgb (N,3), solid_angle, angular_radius, energy_share (N,), rect (N,4), total_rgb (3,), "
-        "and metadata (notes, timings_ms, cell_size, ...).");
+        "and metadata (notes, timings_ms, cell_size, ...). evaluate/refit/max_error add 'errors' on `effects`.");
   m.def("bake_file", &bakeFile, py::arg("path"), py::kw_only(), py::arg("projection") = "auto",
         py::arg("method") = "variance", py::arg("lights") = 16, py::arg("centroid") = "energy",
         py::arg("resolution") = "auto", py::arg("horizon") = false, py::arg("bands") = 8, py::arg("epsilon") = 0.01,

@@ -4,6 +4,7 @@
 #include <OpenImageIO/imagebufalgo.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -159,6 +160,40 @@ AutoCountResult autoCount(const Probe& probe, const Evaluator& evaluator, BakeOp
     }
   }
   return best;
+}
+
+EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOptions a) {
+  EvaluatedBake out;
+  const bool evaluating = a.evaluate || a.refit || a.maxError > 0;
+  if (a.refit) a.effects |= kDiffuse;
+  if (!evaluating) {
+    out.bake = bake(probe, options);
+    out.lights = options.lights;
+    return out;
+  }
+  const Evaluator evaluator(probe, a.effects, EvaluatorOptions{a.evaluatorWidth, a.refit});
+  if (a.maxError > 0) {
+    AutoCountResult chosen = autoCount(probe, evaluator, options, a.maxError, a.refit);
+    out.bake = std::move(chosen.bake);
+    out.autoCount = true, out.met = chosen.met, out.tried = std::move(chosen.tried), out.lights = chosen.lights;
+    char line[200];
+    std::snprintf(line, sizeof line, "%s: %d lights, worst error %.2f%% (asked at most %.2f%%)",
+                  chosen.met ? "auto count" : "auto count missed the tolerance", chosen.lights,
+                  100 * chosen.errors.worst(a.effects), 100 * a.maxError);
+    out.bake.notes.push_back(line);
+  } else {
+    out.bake = bake(probe, options);
+    out.lights = options.lights;
+    if (a.refit) {
+      if (out.bake.lights.size() > kMaxRefitLights)
+        throw Error("the refit takes at most " + std::to_string(kMaxRefitLights) + " lights");
+      out.bake.lights = refitIrradiance(evaluator, out.bake.lights, &out.energyShift);
+    }
+  }
+  out.evaluated = true;
+  out.effects = a.effects;
+  out.errors = evaluator.evaluate(out.bake.lights);
+  return out;
 }
 
 }  // namespace probelights

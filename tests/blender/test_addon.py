@@ -120,6 +120,22 @@ def test_every_method_bakes():
         assert harness.angle_deg(sun_direction(brightest(lights)), latlong_direction(40, 20, 128, 64)) < 0.5, method
 
 
+def test_estimated_errors_and_count_by_tolerance():
+    harness.empty_scene()
+    harness.env_world(bpy.data.images.load(os.path.join(ARGS.shared, "hdri", "noon_grass_1k.hdr")))
+    settings = bpy.context.scene.probe_lights
+    bake(count=16)
+    assert 0 < settings.last_diffuse_error < 10 and 0 < settings.last_shadow_error < 20, (
+        settings.last_diffuse_error, settings.last_shadow_error)
+    lights = bake(count_mode="TOLERANCE", max_error=1.5)
+    assert settings.last_diffuse_error <= 1.5 and settings.last_shadow_error <= 1.5
+    assert "auto count" in settings.last_notes, settings.last_notes
+    print("  1.5 %% tolerance: %d lights, diffuse %.2f %%, shadow %.2f %%" % (
+        len(lights), settings.last_diffuse_error, settings.last_shadow_error))
+    refit = bake(count=16, refit=True)
+    assert len(refit) == 16
+
+
 def test_node_group_and_reroute():
     harness.empty_scene()
     world = bright_spot_world((100, 10))
@@ -300,7 +316,8 @@ def test_point_lights_give_the_same_irradiance_at_the_origin():
 
 
 harness.run([test_register_unregister, test_real_probes_bake_with_their_energy,
-             test_strength_and_rotation_carry_into_the_lights, test_every_method_bakes, test_node_group_and_reroute, test_mirror_ball_image,
+             test_strength_and_rotation_carry_into_the_lights, test_every_method_bakes,
+             test_estimated_errors_and_count_by_tolerance, test_node_group_and_reroute, test_mirror_ball_image,
              test_sky_texture_world_is_rendered, test_read_and_rendered_worlds_agree,
              test_plain_colour_world_and_its_restore,
              test_rebake_replaces_only_its_own_lights, test_restore_brings_the_world_back_exactly,

@@ -48,4 +48,25 @@ struct AutoCountResult {
 AutoCountResult autoCount(const Probe& probe, const Evaluator& evaluator, BakeOptions options, double tolerance,
                           bool refit, int maxLights = 1024);
 
+// One bake with the accuracy options the CLI and the add-on offer: `maxError` > 0 picks the count (autoCount),
+// `refit` refits the lights' colours, and any of them (or `evaluate`) measures the errors on `effects`.
+struct AccuracyOptions {
+  unsigned effects = kDiffuse;
+  bool evaluate = false, refit = false;
+  double maxError = 0;
+  int evaluatorWidth = 2048;  // EvaluatorOptions::maxWidth (the add-on's quick estimate uses 512)
+};
+
+struct EvaluatedBake {
+  BakeResult bake;
+  bool evaluated = false, autoCount = false, met = false;
+  unsigned effects = 0;
+  EffectErrors errors;
+  double energyShift = 0;  // of the refit
+  int lights = 0;          // the count used (chosen when autoCount)
+  std::vector<std::pair<int, double>> tried;
+};
+
+EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOptions accuracy);
+
 }  // namespace probelights
