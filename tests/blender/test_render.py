@@ -13,97 +13,23 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import harness  # noqa: E402
+import render_scene  # noqa: E402
 
 ARGS = harness.args()
 harness.install_addon(ARGS.zip)
 
-WIDTH, HEIGHT, BLOCK = 128, 96, 8
+WIDTH, HEIGHT = 128, 96
 SAMPLES = 256
 if ARGS.size:  # README pictures: e.g. --size 480x360x1024 --save docs
     WIDTH, HEIGHT, SAMPLES = (int(v) for v in ARGS.size.split("x"))
 BOUND_64 = 0.025  # mean relative difference of lit 8x8 blocks at 64 lights (measured 0.5-1.2 %)
-LUM = np.array([0.2126, 0.7152, 0.0722])
-
-
-def diffuse_material(albedo=0.8):
-    mat = bpy.data.materials.new("diffuse")
-    mat.use_nodes = True
-    nt = mat.node_tree
-    nt.nodes.remove(nt.nodes["Principled BSDF"])
-    d = nt.nodes.new("ShaderNodeBsdfDiffuse")
-    d.inputs["Color"].default_value = (albedo, albedo, albedo, 1)
-    nt.links.new(d.outputs[0], nt.nodes["Material Output"].inputs["Surface"])
-    return mat
+LUM = render_scene.LUM
+diffuse_material, render, block_difference, save_png = (render_scene.diffuse_material, render_scene.render,
+                                                        render_scene.block_difference, render_scene.save_png)
 
 
 def sphere_over_plane():
-    scene = bpy.context.scene
-    mat = diffuse_material()
-    bpy.ops.mesh.primitive_plane_add(size=12)
-    bpy.context.active_object.data.materials.append(mat)
-    bpy.ops.mesh.primitive_uv_sphere_add(radius=1, location=(0, 0, 1), segments=48, ring_count=24)
-    bpy.ops.object.shade_smooth()
-    bpy.context.active_object.data.materials.append(mat)
-    cam = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
-    cam.location = (0, -7, 3.2)
-    cam.rotation_euler = (math.radians(72), 0, 0)
-    cam.data.lens = 35
-    scene.collection.objects.link(cam)
-    scene.camera = cam
-    r = scene.render
-    r.engine = "CYCLES"
-    r.resolution_x, r.resolution_y, r.resolution_percentage = WIDTH, HEIGHT, 100
-    r.film_transparent = True
-    r.image_settings.file_format = "OPEN_EXR"
-    r.image_settings.color_depth = "32"
-    scene.cycles.samples = SAMPLES
-    scene.cycles.use_adaptive_sampling = False
-    scene.cycles.use_denoising = False
-    scene.cycles.seed = 1
-    scene.cycles.max_bounces = 4
-    scene.cycles.sample_clamp_indirect = 0.0  # the reference must be unbiased (Blender 3.x defaults to 10)
-
-
-def render():
-    fd, path = tempfile.mkstemp(suffix=".exr")
-    os.close(fd)
-    scene = bpy.context.scene
-    scene.render.filepath = path
-    bpy.ops.render.render(write_still=True)
-    img = bpy.data.images.load(path)
-    a = np.empty(WIDTH * HEIGHT * 4, np.float32)
-    img.pixels.foreach_get(a)
-    bpy.data.images.remove(img)
-    os.remove(path)
-    return a.reshape(HEIGHT, WIDTH, 4)[::-1]
-
-
-def block_difference(world_lit, light_lit):
-    """Mean over the 8x8 blocks made only of lit object pixels of |lights - world| / world (luminance)."""
-    h, w = HEIGHT // BLOCK, WIDTH // BLOCK
-    def blocks(a):
-        return a[: h * BLOCK, : w * BLOCK].reshape(h, BLOCK, w, BLOCK, *a.shape[2:]).mean(axis=(1, 3))
-    ya, yb = blocks(world_lit[..., :3] @ LUM), blocks(light_lit[..., :3] @ LUM)
-    solid = blocks((world_lit[..., 3] > 0.999).astype(float)) == 1.0
-    lit = solid & (ya > 0.02 * ya[solid].max())
-    rel = np.abs(yb[lit] - ya[lit]) / ya[lit]
-    return float(rel.mean()), int(lit.sum())
-
-
-def save_png(pixels, path):
-    """Saves a side-by-side of linear renders, tone-mapped (x / (1 + x), sRGB), as an 8-bit PNG."""
-    x = np.clip(pixels[..., :3] / (1 + pixels[..., :3]), 0, 1)
-    srgb = np.where(x <= 0.0031308, 12.92 * x, 1.055 * x ** (1 / 2.4) - 0.055)
-    h, w = srgb.shape[:2]
-    rgba = np.ones((h, w, 4), np.float32)
-    rgba[..., :3] = srgb
-    img = bpy.data.images.new("save", w, h)
-    img.colorspace_settings.name = "Non-Color"
-    img.pixels.foreach_set(rgba[::-1].ravel())
-    img.filepath_raw = path
-    img.file_format = "PNG"
-    img.save()
-    bpy.data.images.remove(img)
+    render_scene.sphere_over_plane(WIDTH, HEIGHT, SAMPLES)
 
 
 def compare(probe, counts):
