@@ -60,7 +60,10 @@ def test_button_bake_then_undo():
 
 def test_panel_draws_in_world_properties():
     win = bpy.context.window_manager.windows[0]
-    area = max((a for a in win.screen.areas if a.type == "PROPERTIES"), key=lambda a: a.height)
+    # The largest area (the 3D view) becomes a Properties editor on the World tab: wide enough to read the panel.
+    area = max(win.screen.areas, key=lambda a: a.width * a.height)
+    area.type = "PROPERTIES"
+    yield
     area.spaces[0].context = "WORLD"
     from probe_lights import ui
     original, calls, errors = ui.draw_panel, [], []
@@ -93,6 +96,11 @@ def test_panel_draws_in_world_properties():
 def steps():
     """Runs the tests one event-loop step at a time: a test may `yield` to let Blender process events."""
     passed = failed = 0
+    # A fresh profile opens with the first-run splash over the window; Escape closes it, as a user would.
+    win = bpy.context.window_manager.windows[0]
+    win.event_simulate(type="ESC", value="PRESS")
+    win.event_simulate(type="ESC", value="RELEASE")
+    yield
     harness.install_addon(ARGS.zip)
     for test in (test_button_bake_then_undo, test_panel_draws_in_world_properties):
         try:
