@@ -4,25 +4,25 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <filesystem>
 #include <map>
 #include <optional>
-#include <sstream>
-#include <tuple>
 #include <random>
+#include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "json_output.h"
 #include "probelights/bake.h"
 #include "probelights/error.h"
+#include "probelights/evaluate.h"
 #include "probelights/preview.h"
 #include "probelights/probe.h"
 #include "probelights/sh_sampler.h"
 #include "probelights/spherical_harmonics.h"
-#include "probelights/evaluate.h"
 #include "probelights/tradeoff.h"
 
 namespace {
@@ -30,7 +30,8 @@ namespace {
 using namespace probelights;
 using cli::Evaluation;
 
-const char* kUsage = R"(usage: probelights bake PROBE [options]      N lights that carry exactly the probe's energy
+const char* kUsage =
+    R"(usage: probelights bake PROBE [options]      N lights that carry exactly the probe's energy
        probelights sh PROBE --bands B [--irradiance] [--window none|hanning|lanczos] [-o sh.json]
        probelights sample PROBE --bands B --epsilon E --samples N [--depth K] [--seed S] [-o samples.json]
        probelights tradeoff PROBE [--effects diffuse,shadow,glossy] [--counts 1,2,4,...] [--methods ...]
@@ -105,85 +106,105 @@ int parseCount(const std::string& flag, const std::string& text) {
   throw UsageError(flag + " expects a whole number, got '" + text + "'");
 }
 
+// Walks the arguments of a command: "--flag value" and "--flag=value" alike.
+class ArgReader {
+ public:
+  explicit ArgReader(const std::vector<std::string>& argv) : argv_(argv) {}
+  bool next() {
+    if (++i_ >= argv_.size()) return false;
+    const std::string& a = argv_[i_];
+    const auto eq = a.find('=');
+    inline_ = a.rfind("--", 0) == 0 && eq != std::string::npos;
+    arg_ = inline_ ? a.substr(0, eq) : a;
+    value_ = inline_ ? a.substr(eq + 1) : std::string();
+    return true;
+  }
+  const std::string& arg() const { return arg_; }
+  std::string value() {
+    if (inline_) return value_;
+    if (i_ + 1 >= argv_.size()) throw UsageError(arg_ + " needs a value");
+    return argv_[++i_];
+  }
+  // The probe path (the one positional argument), or an unknown option.
+  void positional(std::string& probe) const {
+    if (!arg_.empty() && arg_[0] == '-' && arg_ != "-")
+      throw UsageError("unknown option '" + arg_ + "' (see probelights --help)");
+    if (!probe.empty()) throw UsageError("one probe at a time: got '" + probe + "' and '" + arg_ + "'");
+    probe = arg_;
+  }
+
+ private:
+  const std::vector<std::string>& argv_;
+  std::size_t i_ = static_cast<std::size_t>(-1);
+  bool inline_ = false;
+  std::string arg_, value_;
+};
+
+ProjectionChoice projectionArg(const std::string& v) {
+  auto p = parseProjectionChoice(v);
+  if (!p) throw UsageError("unknown projection '" + v + "': use auto, latlong, mirror-ball or angular");
+  return *p;
+}
+
+NonFinitePolicy nonFiniteArg(const std::string& v) {
+  if (v == "error") return NonFinitePolicy::Error;
+  if (v == "zero") return NonFinitePolicy::Zero;
+  throw UsageError("unknown --nonfinite policy '" + v + "': use error or zero");
+}
+
+Method methodArg(const std::string& v) {
+  auto m = parseMethod(v);
+  if (!m) throw UsageError("unknown method '" + v + "': use median-cut, variance or sh");
+  return *m;
+}
 
 Args parseBakeArgs(const std::vector<std::string>& argv) {
   Args a;
-  for (std::size_t i = 0; i < argv.size(); ++i) {
-    std::string arg = argv[i], value;
-    bool hasInlineValue = false;
-    if (arg.rfind("--", 0) == 0 && arg.find('=') != std::string::npos) {
-      value = arg.substr(arg.find('=') + 1);
-      arg = arg.substr(0, arg.find('='));
-      hasInlineValue = true;
-    }
-    auto next = [&]() -> std::string {
-      if (hasInlineValue) return value;
-      if (i + 1 >= argv.size()) throw UsageError(arg + " needs a value");
-      return argv[++i];
-    };
-    if (arg == "--method") {
-      std::string v = next();
-      auto m = parseMethod(v);
-      if (!m) throw UsageError("unknown method '" + v + "': use median-cut, variance or sh");
-      a.bake.method = *m;
-    } else if (arg == "--lights" || arg == "-n") {
-      a.bake.lights = parseCount(arg, next());
-    } else if (arg == "--projection") {
-      std::string v = next();
-      auto p = parseProjectionChoice(v);
-      if (!p) throw UsageError("unknown projection '" + v + "': use auto, latlong, mirror-ball or angular");
-      a.probeOptions.projection = *p;
-    } else if (arg == "--centroid") {
-      std::string v = next();
-      if (v == "energy")
-        a.bake.centroid = CentroidWeight::Energy;
-      else if (v == "energy2")
-        a.bake.centroid = CentroidWeight::Energy2;
-      else
+  ArgReader r(argv);
+  while (r.next()) {
+    const std::string& arg = r.arg();
+    if (arg == "--method")
+      a.bake.method = methodArg(r.value());
+    else if (arg == "--lights" || arg == "-n")
+      a.bake.lights = parseCount(arg, r.value());
+    else if (arg == "--projection")
+      a.probeOptions.projection = projectionArg(r.value());
+    else if (arg == "--nonfinite")
+      a.probeOptions.nonFinite = nonFiniteArg(r.value());
+    else if (arg == "--centroid") {
+      std::string v = r.value();
+      if (v != "energy" && v != "energy2")
         throw UsageError("unknown centroid '" + v + "': use energy or energy2");
+      a.bake.centroid = v == "energy" ? CentroidWeight::Energy : CentroidWeight::Energy2;
     } else if (arg == "--resolution") {
-      std::string v = next();
-      auto r = WorkingResolution::parse(v);
-      if (!r) throw UsageError("unknown resolution '" + v + "': use full, auto or a width in pixels");
-      a.bake.resolution = *r;
-    } else if (arg == "--bands") {
-      a.bake.shBands = parseCount(arg, next());
-    } else if (arg == "--epsilon") {
-      a.bake.shEpsilon = parseReal(arg, next());
-    } else if (arg == "--horizon") {
-      std::string v = next();
-      if (v == "on") a.bake.splitAtHorizon = true;
-      else if (v == "off") a.bake.splitAtHorizon = false;
-      else throw UsageError("--horizon takes on or off, got '" + v + "'");
-    } else if (arg == "--nonfinite") {
-      std::string v = next();
-      if (v == "error")
-        a.probeOptions.nonFinite = NonFinitePolicy::Error;
-      else if (v == "zero")
-        a.probeOptions.nonFinite = NonFinitePolicy::Zero;
-      else
-        throw UsageError("unknown --nonfinite policy '" + v + "': use error or zero");
-    } else if (arg == "-o" || arg == "--output") {
-      a.output = next();
-    } else if (arg == "--preview") {
-      a.preview = next();
-    } else if (arg == "-q" || arg == "--quiet") {
+      std::string v = r.value();
+      auto res = WorkingResolution::parse(v);
+      if (!res) throw UsageError("unknown resolution '" + v + "': use full, auto or a width in pixels");
+      a.bake.resolution = *res;
+    } else if (arg == "--bands")
+      a.bake.shBands = parseCount(arg, r.value());
+    else if (arg == "--epsilon")
+      a.bake.shEpsilon = parseReal(arg, r.value());
+    else if (arg == "--horizon") {
+      std::string v = r.value();
+      if (v != "on" && v != "off") throw UsageError("--horizon takes on or off, got '" + v + "'");
+      a.bake.splitAtHorizon = v == "on";
+    } else if (arg == "-o" || arg == "--output")
+      a.output = r.value();
+    else if (arg == "--preview")
+      a.preview = r.value();
+    else if (arg == "-q" || arg == "--quiet")
       a.quiet = true;
-    } else if (arg == "--refit") {
+    else if (arg == "--refit")
       a.refit = true;
-    } else if (arg == "--evaluate") {
+    else if (arg == "--evaluate")
       a.evaluate = true;
-    } else if (arg == "--max-error") {
-      a.maxError = parseTolerance(arg, next());
-    } else if (arg == "--effects") {
-      a.effects = parseEffects(next());
-    } else if (!arg.empty() && arg[0] == '-' && arg != "-") {
-      throw UsageError("unknown option '" + arg + "' (see probelights --help)");
-    } else if (a.probe.empty()) {
-      a.probe = arg;
-    } else {
-      throw UsageError("one probe at a time: got '" + a.probe + "' and '" + arg + "'");
-    }
+    else if (arg == "--max-error")
+      a.maxError = parseTolerance(arg, r.value());
+    else if (arg == "--effects")
+      a.effects = parseEffects(r.value());
+    else
+      r.positional(a.probe);
   }
   if (a.probe.empty()) throw UsageError("no probe given: probelights bake PROBE");
   if (a.bake.lights < 1)
@@ -191,7 +212,8 @@ Args parseBakeArgs(const std::vector<std::string>& argv) {
   return a;
 }
 
-void printSummary(const Args& a, const Probe& probe, const BakeResult& r, double loadMs, const Evaluation& ev) {
+void printSummary(const Args& a, const Probe& probe, const BakeResult& r, double loadMs,
+                  const Evaluation& ev) {
   std::printf("probe      %s  %dx%d %s\n", a.probe.c_str(), probe.width(), probe.height(),
               toString(probe.projection().kind()).c_str());
   for (const auto& note : probe.report().notes) std::printf("note       %s\n", note.c_str());
@@ -270,43 +292,37 @@ struct ShArgs {
 
 ShArgs parseShArgs(const std::vector<std::string>& argv, bool sampling) {
   ShArgs a;
-  for (std::size_t i = 0; i < argv.size(); ++i) {
-    std::string arg = argv[i], value;
-    bool inlineValue = false;
-    if (arg.rfind("--", 0) == 0 && arg.find('=') != std::string::npos) {
-      value = arg.substr(arg.find('=') + 1), arg = arg.substr(0, arg.find('=')), inlineValue = true;
-    }
-    auto next = [&]() -> std::string {
-      if (inlineValue) return value;
-      if (i + 1 >= argv.size()) throw UsageError(arg + " needs a value");
-      return argv[++i];
-    };
-    if (arg == "--bands") a.bands = parseCount(arg, next());
-    else if (arg == "--samples" && sampling) a.samples = parseCount(arg, next());
-    else if (arg == "--depth" && sampling) a.depth = parseCount(arg, next());
-    else if (arg == "--seed" && sampling) a.seed = static_cast<std::uint64_t>(parseCount(arg, next()));
-    else if (arg == "--epsilon" && sampling) a.epsilon = parseReal(arg, next());
-    else if (arg == "--irradiance" && !sampling) a.irradiance = true;
+  ArgReader r(argv);
+  while (r.next()) {
+    const std::string& arg = r.arg();
+    if (arg == "--bands")
+      a.bands = parseCount(arg, r.value());
+    else if (arg == "--samples" && sampling)
+      a.samples = parseCount(arg, r.value());
+    else if (arg == "--depth" && sampling)
+      a.depth = parseCount(arg, r.value());
+    else if (arg == "--seed" && sampling)
+      a.seed = static_cast<std::uint64_t>(parseCount(arg, r.value()));
+    else if (arg == "--epsilon" && sampling)
+      a.epsilon = parseReal(arg, r.value());
+    else if (arg == "--irradiance" && !sampling)
+      a.irradiance = true;
     else if (arg == "--window" && !sampling) {
-      std::string v = next();
+      std::string v = r.value();
       auto w = parseShWindow(v);
       if (!w) throw UsageError("unknown window '" + v + "': use none, hanning or lanczos");
       a.window = *w;
-    } else if (arg == "--projection") {
-      std::string v = next();
-      auto p = parseProjectionChoice(v);
-      if (!p) throw UsageError("unknown projection '" + v + "': use auto, latlong, mirror-ball or angular");
-      a.probeOptions.projection = *p;
-    } else if (arg == "--nonfinite") {
-      std::string v = next();
-      if (v != "error" && v != "zero") throw UsageError("unknown --nonfinite policy '" + v + "': use error or zero");
-      a.probeOptions.nonFinite = v == "zero" ? NonFinitePolicy::Zero : NonFinitePolicy::Error;
-    } else if (arg == "-o" || arg == "--output") a.output = next();
-    else if (!arg.empty() && arg[0] == '-') throw UsageError("unknown option '" + arg + "' (see probelights --help)");
-    else if (a.probe.empty()) a.probe = arg;
-    else throw UsageError("one probe at a time: got '" + a.probe + "' and '" + arg + "'");
+    } else if (arg == "--projection")
+      a.probeOptions.projection = projectionArg(r.value());
+    else if (arg == "--nonfinite")
+      a.probeOptions.nonFinite = nonFiniteArg(r.value());
+    else if (arg == "-o" || arg == "--output")
+      a.output = r.value();
+    else
+      r.positional(a.probe);
   }
-  if (a.probe.empty()) throw UsageError(std::string("no probe given: probelights ") + (sampling ? "sample" : "sh") + " PROBE");
+  if (a.probe.empty())
+    throw UsageError(std::string("no probe given: probelights ") + (sampling ? "sample" : "sh") + " PROBE");
   if (a.bands < 1) throw UsageError("--bands B (at least 1) is required");
   if (sampling && a.samples < 1) throw UsageError("--samples N (at least 1) is required");
   if (sampling && a.epsilon < 0) throw UsageError("--epsilon E (in [0, 0.5]) is required");
@@ -324,12 +340,15 @@ void writeJson(const nlohmann::json& j, const std::string& output) {
 }
 
 nlohmann::json sourceJson(const std::string& path, const Probe& probe) {
-  return {{"path", path}, {"width", probe.width()}, {"height", probe.height()},
+  return {{"path", path},
+          {"width", probe.width()},
+          {"height", probe.height()},
           {"projection", toString(probe.projection().kind())}};
 }
 
 constexpr const char* kConvention =
-    "real SH, index l(l+1)+m, orthonormal, Condon-Shortley phase (Sloan 2008); theta from +Z, phi = atan2(y, x)";
+    "real SH, index l(l+1)+m, orthonormal, Condon-Shortley phase (Sloan 2008); theta from +Z, phi = atan2(y, "
+    "x)";
 
 int shCommand(const std::vector<std::string>& argv) {
   ShArgs a = parseShArgs(argv, false);
@@ -339,9 +358,13 @@ int shCommand(const std::vector<std::string>& argv) {
   if (a.irradiance) sh = irradianceCoefficients(sh);
   nlohmann::json c = nlohmann::json::array();
   for (const Rgb& v : sh.c) c.push_back(v);
-  writeJson({{"source", sourceJson(a.probe, probe)}, {"bands", a.bands}, {"convention", kConvention},
+  writeJson({{"source", sourceJson(a.probe, probe)},
+             {"bands", a.bands},
+             {"convention", kConvention},
              {"quantity", a.irradiance ? "irradiance" : "radiance"},
-             {"window", a.window == ShWindow::None ? "none" : a.window == ShWindow::Hanning ? "hanning" : "lanczos"},
+             {"window", a.window == ShWindow::None      ? "none"
+                        : a.window == ShWindow::Hanning ? "hanning"
+                                                        : "lanczos"},
              {"coefficients", c}},
             a.output);
   return 0;
@@ -359,8 +382,14 @@ int sampleCommand(const std::vector<std::string>& argv) {
     dirs.push_back({s.direction.x, s.direction.y, s.direction.z});
     pdfs.push_back(s.pdf);
   }
-  writeJson({{"source", sourceJson(a.probe, probe)}, {"bands", a.bands}, {"epsilon", a.epsilon}, {"depth", a.depth},
-             {"seed", a.seed}, {"convention", kConvention}, {"directions", dirs}, {"pdf", pdfs}},
+  writeJson({{"source", sourceJson(a.probe, probe)},
+             {"bands", a.bands},
+             {"epsilon", a.epsilon},
+             {"depth", a.depth},
+             {"seed", a.seed},
+             {"convention", kConvention},
+             {"directions", dirs},
+             {"pdf", pdfs}},
             a.output);
   return 0;
 }
@@ -378,38 +407,31 @@ int tradeoffCommand(const std::vector<std::string>& argv) {
   ProbeOptions probeOptions;
   TradeoffOptions options;
   unsigned effects = kDiffuse | kShadow;
-  for (std::size_t i = 0; i < argv.size(); ++i) {
-    const std::string& arg = argv[i];
-    auto next = [&]() -> std::string {
-      if (i + 1 >= argv.size()) throw UsageError(arg + " needs a value");
-      return argv[++i];
-    };
-    if (arg == "--effects") effects = parseEffects(next());
+  ArgReader r(argv);
+  while (r.next()) {
+    const std::string& arg = r.arg();
+    if (arg == "--effects")
+      effects = parseEffects(r.value());
     else if (arg == "--counts") {
       options.counts.clear();
-      for (const auto& c : splitList(next())) {
+      for (const auto& c : splitList(r.value())) {
         int n = parseCount("--counts", c);
         if (n < 1) throw UsageError("--counts takes light counts of at least 1");
         options.counts.push_back(n);
       }
     } else if (arg == "--methods") {
       options.methods.clear();
-      for (const auto& m : splitList(next())) {
-        auto method = parseMethod(m);
-        if (!method) throw UsageError("unknown method '" + m + "': use median-cut, variance or sh");
-        options.methods.push_back(*method);
-      }
-    } else if (arg == "--no-refit") options.refit = false;
-    else if (arg == "-o" || arg == "--output") output = next();
-    else if (arg == "--plot") plot = next();
-    else if (arg == "--projection") {
-      std::string v = next();
-      auto p = parseProjectionChoice(v);
-      if (!p) throw UsageError("unknown projection '" + v + "': use auto, latlong, mirror-ball or angular");
-      probeOptions.projection = *p;
-    } else if (!arg.empty() && arg[0] == '-') throw UsageError("unknown option '" + arg + "' (see probelights --help)");
-    else if (probePath.empty()) probePath = arg;
-    else throw UsageError("one probe at a time: got '" + probePath + "' and '" + arg + "'");
+      for (const auto& m : splitList(r.value())) options.methods.push_back(methodArg(m));
+    } else if (arg == "--no-refit")
+      options.refit = false;
+    else if (arg == "-o" || arg == "--output")
+      output = r.value();
+    else if (arg == "--plot")
+      plot = r.value();
+    else if (arg == "--projection")
+      probeOptions.projection = projectionArg(r.value());
+    else
+      r.positional(probePath);
   }
   if (probePath.empty()) throw UsageError("no probe given: probelights tradeoff PROBE");
   auto t0 = std::chrono::steady_clock::now();
@@ -420,7 +442,8 @@ int tradeoffCommand(const std::vector<std::string>& argv) {
   std::printf("probe %s %dx%d; effects %s; ground truth %.0f ms; error = relative RMS of luminance\n\n",
               probePath.c_str(), probe.width(), probe.height(), effectsToString(effects).c_str(), truthMs);
   std::printf("%-11s %6s %6s %5s %10s", "method", "lights", "res", "refit", "bake ms");
-  for (auto [bit, name] : {std::pair{kDiffuse, "diffuse"}, std::pair{kShadow, "shadow"}, std::pair{kGlossy, "glossy"}})
+  for (auto [bit, name] :
+       {std::pair{kDiffuse, "diffuse"}, std::pair{kShadow, "shadow"}, std::pair{kGlossy, "glossy"}})
     if (effects & bit) std::printf(" %9s", name);
   std::printf("\n");
   nlohmann::json table = nlohmann::json::array();
@@ -428,20 +451,23 @@ int tradeoffCommand(const std::vector<std::string>& argv) {
     std::printf("%-11s %6d %6s %5s %10.2f", toString(r.method).c_str(), r.made, r.resolution.c_str(),
                 r.refit ? "yes" : "no", r.bakeMs);
     nlohmann::json row{{"method", toString(r.method)}, {"lights", r.lights}, {"made", r.made},
-                       {"resolution", r.resolution}, {"refit", r.refit}, {"bake_ms", r.bakeMs}};
-    for (auto [bit, name, value] : {std::tuple{kDiffuse, "diffuse", r.errors.diffuse},
-                                    std::tuple{kShadow, "shadow", r.errors.shadow},
-                                    std::tuple{kGlossy, "glossy", r.errors.glossy}})
+                       {"resolution", r.resolution},   {"refit", r.refit},   {"bake_ms", r.bakeMs}};
+    for (auto [bit, name, value] :
+         {std::tuple{kDiffuse, "diffuse", r.errors.diffuse}, std::tuple{kShadow, "shadow", r.errors.shadow},
+          std::tuple{kGlossy, "glossy", r.errors.glossy}})
       if (effects & bit) std::printf(" %8.3f%%", 100 * value), row[name] = value;
     std::printf("\n");
     table.push_back(row);
   }
   if (!output.empty())
-    writeJson({{"source", sourceJson(probePath, probe)}, {"effects", effectsToString(effects)},
-               {"error", "relative RMS of luminance over the effect's sample points"}, {"rows", table}},
+    writeJson({{"source", sourceJson(probePath, probe)},
+               {"effects", effectsToString(effects)},
+               {"error", "relative RMS of luminance over the effect's sample points"},
+               {"rows", table}},
               output);
   if (!plot.empty()) {
-    writeTradeoffPlot(rows, effects, std::filesystem::path(probePath).filename().string() + ": error vs bake time", plot);
+    writeTradeoffPlot(rows, effects,
+                      std::filesystem::path(probePath).filename().string() + ": error vs bake time", plot);
     std::printf("\nplot: %s\n", plot.c_str());
   }
   return 0;
@@ -474,7 +500,8 @@ int main(int argc, char** argv) {
         if (s == "--help" || s == "-h") return std::fputs(kUsage, stdout), 0;
       return bakeCommand(rest);
     }
-    throw UsageError("unknown command '" + args[0] + "': use bake, sh, sample or tradeoff (see probelights --help)");
+    throw UsageError("unknown command '" + args[0] +
+                     "': use bake, sh, sample or tradeoff (see probelights --help)");
   } catch (const Error& e) {
     std::fprintf(stderr, "probelights: error: %s\n", e.what());
     return 2;

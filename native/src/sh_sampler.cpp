@@ -32,9 +32,11 @@ ShSampler::ShSampler(int bands, std::vector<double> coefficients, double epsilon
   }
   if (depth < 1 || depth > 12) throw Error("sampler depth must be 1 to 12, got " + std::to_string(depth));
   ShRectIntegrator integrator(bands, std::move(coefficients));
-  // Integrals of the finest cells (separable: z integrals per row, phi integrals per column), then sums upwards.
+  // Integrals of the finest cells (separable: z integrals per row, phi integrals per column), then sums
+  // upwards.
   const int n = 1 << depth;
-  std::vector<std::vector<double>> zInt(n, std::vector<double>(static_cast<std::size_t>(bands) * (bands + 1) / 2));
+  std::vector<std::vector<double>> zInt(
+      n, std::vector<double>(static_cast<std::size_t>(bands) * (bands + 1) / 2));
   std::vector<std::vector<double>> phiInt(n, std::vector<double>(2 * bands - 1));
   for (int i = 0; i < n; ++i) {
     integrator.zIntegrals(1.0 - 2.0 * (i + 1) / n, 1.0 - 2.0 * i / n, zInt[i]);
@@ -43,28 +45,24 @@ ShSampler::ShSampler(int bands, std::vector<double> coefficients, double epsilon
   levels_.resize(depth + 1);
   levels_[depth].resize(static_cast<std::size_t>(n) * n);
   for (int is = 0; is < n; ++is)
-    for (int it = 0; it < n; ++it) levels_[depth][static_cast<std::size_t>(is) * n + it] = integrator.combine(zInt[is], phiInt[it]);
+    for (int it = 0; it < n; ++it)
+      levels_[depth][static_cast<std::size_t>(is) * n + it] = integrator.combine(zInt[is], phiInt[it]);
+  // Each coarser level: its nodes' integrals (sums of their quadrants) and warp probabilities, clamped
+  // (Berger 3.1).
+  auto clamp = [&](double p) { return std::clamp(p, epsilon_, 1.0 - epsilon_); };
+  splits_.resize(depth);
   for (int k = depth - 1; k >= 0; --k) {
     const int m = 1 << k;
     levels_[k].resize(static_cast<std::size_t>(m) * m);
-    const auto& fine = levels_[k + 1];
-    for (int is = 0; is < m; ++is)
-      for (int it = 0; it < m; ++it) {
-        auto f = [&](int a, int b) { return fine[static_cast<std::size_t>(2 * is + a) * 2 * m + 2 * it + b]; };
-        levels_[k][static_cast<std::size_t>(is) * m + it] = f(0, 0) + f(0, 1) + f(1, 0) + f(1, 1);
-      }
-  }
-  // Warp probabilities of every node, clamped (Berger section 3.1).
-  auto clamp = [&](double p) { return std::clamp(p, epsilon_, 1.0 - epsilon_); };
-  splits_.resize(depth);
-  for (int k = 0; k < depth; ++k) {
-    const int m = 1 << k;
     splits_[k].resize(static_cast<std::size_t>(m) * m);
     const auto& fine = levels_[k + 1];
     for (int is = 0; is < m; ++is)
       for (int it = 0; it < m; ++it) {
-        auto f = [&](int a, int b) { return fine[static_cast<std::size_t>(2 * is + a) * 2 * m + 2 * it + b]; };
-        const double total = levels_[k][static_cast<std::size_t>(is) * m + it];
+        auto f = [&](int a, int b) {
+          return fine[static_cast<std::size_t>(2 * is + a) * 2 * m + 2 * it + b];
+        };
+        const double total = f(0, 0) + f(0, 1) + f(1, 0) + f(1, 1);
+        levels_[k][static_cast<std::size_t>(is) * m + it] = total;
         Split& sp = splits_[k][static_cast<std::size_t>(is) * m + it];
         sp.positive = total > 0;
         sp.pS = sp.positive ? clamp((f(0, 0) + f(0, 1)) / total) : 0.5;
