@@ -6,7 +6,7 @@ scripts/install-deps.sh
 scripts/build.sh >/dev/null
 mkdir -p out
 build/bin/probelights bake assets/noon_grass_1k.hdr --method variance --lights 16 \
-  -o out/demo_lights.json --preview out/demo_regions.png
+  --evaluate --effects diffuse,shadow -o out/demo_lights.json --preview out/demo_regions.png
 echo
 echo "lights (JSON): out/demo_lights.json"
 echo "regions and lights drawn on the probe: out/demo_regions.png"
