@@ -51,7 +51,8 @@ def bake_world(context, settings):
         max_error = settings.max_error / 100.0 if settings.count_mode == "TOLERANCE" else 0.0
         baked = _probelights.bake(pixels, projection=projection, method=settings.method, lights=settings.count,
                                   resolution=settings.resolution, evaluate=True, effects="diffuse,shadow",
-                                  evaluator_width=512, refit=settings.refit, max_error=max_error)
+                                  evaluator_width=512, refit=settings.refit, move_directions=settings.refit,
+                                  max_error=max_error)
         wm.progress_update(80)
         remove_lights(scene)
         lights = make_lights(scene, baked, source.world_from_probe, source.strength, settings.light_type,

@@ -39,9 +39,9 @@ def bake_settings():
         "count_mode": EnumProperty(name="Count by", items=COUNT_MODES, default="COUNT"),
         "max_error": FloatProperty(name="Max error", default=2.0, min=0.05, max=50.0, subtype="PERCENTAGE",
                                    description="Largest estimated diffuse/shadow error (relative RMS) to accept"),
-        "refit": BoolProperty(name="Refit intensities", default=False,
-                              description="Re-solve the lights' colours so their diffuse light matches the world's "
-                                          "(halves the diffuse error; moves < 1 % of the energy)"),
+        "refit": BoolProperty(name="Refit to the world's diffuse light", default=False,
+                              description="Re-solve the lights' colours and nudge their directions so their diffuse "
+                                          "light matches the world's (about halves the diffuse error at few lights)"),
     }
 
 

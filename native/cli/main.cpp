@@ -57,6 +57,7 @@ options:
   --preview FILE                    write a picture of the regions and lights (PNG)
   --refit                           re-solve the lights' colours (non-negative least squares) so their
                                     diffuse irradiance matches the probe's; reports the energy shift
+  --refit-directions                the refit also moves the lights' directions (lower error at few lights)
   --max-error E                     the fewest lights whose error is at most E (e.g. 1% or 0.01) on --effects
   --effects diffuse,shadow,glossy   effects to evaluate (default diffuse); evaluating prints their errors
   --evaluate                        evaluate the lights on --effects without choosing the count
@@ -83,7 +84,7 @@ struct Args {
   ProbeOptions probeOptions;
   BakeOptions bake;
   bool quiet = false;
-  bool refit = false, evaluate = false;
+  bool refit = false, evaluate = false, moveDirections = false;
   double maxError = 0;  // 0: not asked
   unsigned effects = kDiffuse;
 };
@@ -197,6 +198,8 @@ Args parseBakeArgs(const std::vector<std::string>& argv) {
       a.quiet = true;
     else if (arg == "--refit")
       a.refit = true;
+    else if (arg == "--refit-directions")
+      a.refit = a.moveDirections = true;
     else if (arg == "--evaluate")
       a.evaluate = true;
     else if (arg == "--max-error")
@@ -255,7 +258,8 @@ int bakeCommand(const std::vector<std::string>& argv) {
   auto t0 = std::chrono::steady_clock::now();
   Probe probe = Probe::load(a.probe, a.probeOptions);
   double loadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  EvaluatedBake done = bakeEvaluated(probe, a.bake, {a.effects, a.evaluate, a.refit, a.maxError, 2048});
+  EvaluatedBake done =
+      bakeEvaluated(probe, a.bake, {a.effects, a.evaluate, a.refit, a.maxError, 2048, a.moveDirections});
   BakeResult result = std::move(done.bake);
   a.bake.lights = done.lights;
   Evaluation evaluation;

@@ -5,15 +5,15 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <random>
+
 #include "probelights/bake.h"
 #include "probelights/error.h"
+#include "probelights/evaluate.h"
 #include "probelights/probe.h"
 #include "probelights/sh_sampler.h"
 #include "probelights/spherical_harmonics.h"
-#include "probelights/evaluate.h"
 #include "probelights/tradeoff.h"
-
-#include <random>
 
 namespace py = pybind11;
 using namespace probelights;
@@ -21,7 +21,8 @@ using namespace probelights;
 namespace {
 
 template <class T>
-T parseOr(const std::optional<T>& v, const std::string& what, const std::string& got, const std::string& choices) {
+T parseOr(const std::optional<T>& v, const std::string& what, const std::string& got,
+          const std::string& choices) {
   if (!v) throw Error("unknown " + what + " '" + got + "': use " + choices);
   return *v;
 }
@@ -34,10 +35,14 @@ BakeOptions bakeOptions(const std::string& method, int lights, const std::string
   o.shEpsilon = epsilon;
   o.method = parseOr(parseMethod(method), "method", method, "median-cut, variance or sh");
   o.lights = lights;
-  if (centroid == "energy") o.centroid = CentroidWeight::Energy;
-  else if (centroid == "energy2") o.centroid = CentroidWeight::Energy2;
-  else throw Error("unknown centroid '" + centroid + "': use energy or energy2");
-  o.resolution = parseOr(WorkingResolution::parse(resolution), "resolution", resolution, "full, auto or a width");
+  if (centroid == "energy")
+    o.centroid = CentroidWeight::Energy;
+  else if (centroid == "energy2")
+    o.centroid = CentroidWeight::Energy2;
+  else
+    throw Error("unknown centroid '" + centroid + "': use energy or energy2");
+  o.resolution =
+      parseOr(WorkingResolution::parse(resolution), "resolution", resolution, "full, auto or a width");
   return o;
 }
 
@@ -66,7 +71,9 @@ py::array_t<double> vector(const std::vector<Light>& lights, auto&& value) {
 
 py::dict toDict(const Probe& probe, const BakeOptions& o, const BakeResult& r) {
   py::dict d;
-  d["direction"] = matrix(r.lights, 3, [](const Light& l) { return std::array{l.direction.x, l.direction.y, l.direction.z}; });
+  d["direction"] = matrix(r.lights, 3, [](const Light& l) {
+    return std::array{l.direction.x, l.direction.y, l.direction.z};
+  });
   d["rgb"] = matrix(r.lights, 3, [](const Light& l) { return l.rgb; });
   d["solid_angle"] = vector(r.lights, [](const Light& l) { return l.solidAngle; });
   d["angular_radius"] = vector(r.lights, [](const Light& l) { return l.angularRadius; });
@@ -90,25 +97,32 @@ py::dict toDict(const Probe& probe, const BakeOptions& o, const BakeResult& r) {
   std::vector<std::string> notes = probe.report().notes;
   notes.insert(notes.end(), r.notes.begin(), r.notes.end());
   d["notes"] = notes;
-  d["timings_ms"] = py::dict(py::arg("tables") = r.timings.tablesMs, py::arg("partition") = r.timings.partitionMs,
-                             py::arg("lights") = r.timings.lightsMs);
+  d["timings_ms"] =
+      py::dict(py::arg("tables") = r.timings.tablesMs, py::arg("partition") = r.timings.partitionMs,
+               py::arg("lights") = r.timings.lightsMs);
   return d;
 }
 
 using Pixels = py::array_t<float, py::array::forcecast>;
 
-// pixels: float32 H x W (grey) or H x W x C (C = 1, 2 grey+alpha, 3 RGB, 4+ RGB + ignored), rows top to bottom.
-// Any row and pixel strides (e.g. a flipped view arr[::-1]) are read in place; other dtypes are converted.
+// pixels: float32 H x W (grey) or H x W x C (C = 1, 2 grey+alpha, 3 RGB, 4+ RGB + ignored), rows top to
+// bottom. Any row and pixel strides (e.g. a flipped view arr[::-1]) are read in place; other dtypes are
+// converted.
 ImageView viewOf(Pixels& pixels) {
   if (pixels.ndim() != 2 && pixels.ndim() != 3)
-    throw Error("pixels must be a H x W or H x W x C array, got " + std::to_string(pixels.ndim()) + " dimensions");
+    throw Error("pixels must be a H x W or H x W x C array, got " + std::to_string(pixels.ndim()) +
+                " dimensions");
   const int channels = pixels.ndim() == 3 ? static_cast<int>(pixels.shape(2)) : 1;
-  if (pixels.ndim() == 3 && pixels.shape(2) > 1 && pixels.strides(2) != static_cast<py::ssize_t>(sizeof(float)))
+  if (pixels.ndim() == 3 && pixels.shape(2) > 1 &&
+      pixels.strides(2) != static_cast<py::ssize_t>(sizeof(float)))
     pixels = py::array_t<float, py::array::forcecast | py::array::c_style>::ensure(pixels);
   for (int k = 0; k < 2; ++k)
     if (pixels.strides(k) % static_cast<py::ssize_t>(sizeof(float)) != 0)
       pixels = py::array_t<float, py::array::forcecast | py::array::c_style>::ensure(pixels);
-  return ImageView{pixels.data(), static_cast<int>(pixels.shape(1)), static_cast<int>(pixels.shape(0)), channels,
+  return ImageView{pixels.data(),
+                   static_cast<int>(pixels.shape(1)),
+                   static_cast<int>(pixels.shape(0)),
+                   channels,
                    pixels.strides(0) / static_cast<py::ssize_t>(sizeof(float)),
                    pixels.strides(1) / static_cast<py::ssize_t>(sizeof(float))};
 }
@@ -127,24 +141,27 @@ void addEvaluation(py::dict& d, const EvaluatedBake& e) {
   if (e.effects & kGlossy) errors["glossy"] = e.errors.glossy;
   d["errors"] = errors;
   d["energy_shift"] = e.energyShift;
-  if (e.autoCount) d["auto_count"] = py::dict(py::arg("met") = e.met, py::arg("lights") = e.lights, py::arg("tried") = e.tried);
+  if (e.autoCount)
+    d["auto_count"] =
+        py::dict(py::arg("met") = e.met, py::arg("lights") = e.lights, py::arg("tried") = e.tried);
 }
 
 AccuracyOptions accuracyOptions(const std::string& effects, bool evaluate, bool refit, double maxError,
-                                int evaluatorWidth) {
+                                int evaluatorWidth, bool moveDirections) {
   if (maxError < 0 || maxError >= 1) throw Error("max_error is a fraction in (0, 1), e.g. 0.01 for 1 %");
-  return {parseEffects(effects), evaluate, refit, maxError, evaluatorWidth};
+  return {parseEffects(effects), evaluate, refit || moveDirections, maxError, evaluatorWidth, moveDirections};
 }
 
 py::dict bakePixels(Pixels pixels, const std::string& projection, const std::string& method, int lights,
                     const std::string& centroid, const std::string& resolution, bool horizon, int bands,
-                    double epsilon, const std::string& effects, bool evaluate, bool refit, double maxError,
-                    int evaluatorWidth, const std::string& nonfinite) {
+                    double epsilon, const std::string& effects, bool evaluate, bool refit,
+                    bool moveDirections, double maxError, int evaluatorWidth, const std::string& nonfinite) {
   const ImageView view = viewOf(pixels);
   const auto kind = projectionOf(projection);
   const BakeOptions options = bakeOptions(method, lights, centroid, resolution, horizon, bands, epsilon);
   const NonFinitePolicy policy = nonFinitePolicy(nonfinite);
-  const AccuracyOptions accuracy = accuracyOptions(effects, evaluate, refit, maxError, evaluatorWidth);
+  const AccuracyOptions accuracy =
+      accuracyOptions(effects, evaluate, refit, maxError, evaluatorWidth, moveDirections);
   std::optional<Probe> probe;
   EvaluatedBake result;
   {
@@ -159,12 +176,12 @@ py::dict bakePixels(Pixels pixels, const std::string& projection, const std::str
   return d;
 }
 
-py::dict bakeFile(const std::string& path, const std::string& projection, const std::string& method, int lights,
-                  const std::string& centroid, const std::string& resolution, bool horizon, int bands, double epsilon,
-                  const std::string& nonfinite) {
+py::dict bakeFile(const std::string& path, const std::string& projection, const std::string& method,
+                  int lights, const std::string& centroid, const std::string& resolution, bool horizon,
+                  int bands, double epsilon, const std::string& nonfinite) {
   ProbeOptions probeOptions;
-  probeOptions.projection =
-      parseOr(parseProjectionChoice(projection), "projection", projection, "auto, latlong, mirror-ball or angular");
+  probeOptions.projection = parseOr(parseProjectionChoice(projection), "projection", projection,
+                                    "auto, latlong, mirror-ball or angular");
   probeOptions.nonFinite = nonFinitePolicy(nonfinite);
   const BakeOptions options = bakeOptions(method, lights, centroid, resolution, horizon, bands, epsilon);
   std::optional<Probe> probe;
@@ -180,8 +197,8 @@ py::dict bakeFile(const std::string& path, const std::string& projection, const 
 }
 
 // SH coefficients (bands^2 x 3) of the radiance, or of the irradiance.
-py::array_t<double> shProject(Pixels pixels, int bands, const std::string& projection, const std::string& window,
-                              bool irradiance, const std::string& nonfinite) {
+py::array_t<double> shProject(Pixels pixels, int bands, const std::string& projection,
+                              const std::string& window, bool irradiance, const std::string& nonfinite) {
   const ImageView view = viewOf(pixels);
   const auto kind = projectionOf(projection);
   const ShWindow w = parseOr(parseShWindow(window), "window", window, "none, hanning or lanczos");
@@ -201,8 +218,8 @@ py::array_t<double> shProject(Pixels pixels, int bands, const std::string& proje
   return out;
 }
 
-// Directions (N, 3) and pdfs (N,) from the SH importance sampler of the probe's luminance; u (N, 2) in [0,1)^2 or,
-// if not given, `samples` points from a seeded generator.
+// Directions (N, 3) and pdfs (N,) from the SH importance sampler of the probe's luminance; u (N, 2) in
+// [0,1)^2 or, if not given, `samples` points from a seeded generator.
 py::tuple shSample(Pixels pixels, int bands, double epsilon, int samples, int depth, std::uint64_t seed,
                    const std::string& projection, const std::string& nonfinite) {
   const ImageView view = viewOf(pixels);
@@ -233,24 +250,30 @@ PYBIND11_MODULE(_probelights, m) {
   py::register_exception<Error>(m, "Error", PyExc_ValueError);
   m.def("bake", &bakePixels, py::arg("pixels"), py::kw_only(), py::arg("projection") = "latlong",
         py::arg("method") = "variance", py::arg("lights") = 16, py::arg("centroid") = "energy",
-        py::arg("resolution") = "auto", py::arg("horizon") = false, py::arg("bands") = 8, py::arg("epsilon") = 0.01,
-        py::arg("effects") = "diffuse", py::arg("evaluate") = false, py::arg("refit") = false,
-        py::arg("max_error") = 0.0, py::arg("evaluator_width") = 2048, py::arg("nonfinite") = "error",
-        "Bake a probe given as a float32 H x W x C array (rows top to bottom; not copied). Returns a dict of numpy "
-        "arrays: direction (N,3), rgb (N,3), solid_angle, angular_radius, energy_share (N,), rect (N,4), total_rgb (3,), "
-        "and metadata (notes, timings_ms, cell_size, ...). evaluate/refit/max_error add 'errors' on `effects`.");
+        py::arg("resolution") = "auto", py::arg("horizon") = false, py::arg("bands") = 8,
+        py::arg("epsilon") = 0.01, py::arg("effects") = "diffuse", py::arg("evaluate") = false,
+        py::arg("refit") = false, py::arg("move_directions") = false, py::arg("max_error") = 0.0,
+        py::arg("evaluator_width") = 2048, py::arg("nonfinite") = "error",
+        "Bake a probe given as a float32 H x W x C array (rows top to bottom; not copied). Returns a dict of "
+        "numpy "
+        "arrays: direction (N,3), rgb (N,3), solid_angle, angular_radius, energy_share (N,), rect (N,4), "
+        "total_rgb (3,), "
+        "and metadata (notes, timings_ms, cell_size, ...). evaluate/refit/max_error add 'errors' on "
+        "`effects`.");
   m.def("bake_file", &bakeFile, py::arg("path"), py::kw_only(), py::arg("projection") = "auto",
         py::arg("method") = "variance", py::arg("lights") = 16, py::arg("centroid") = "energy",
-        py::arg("resolution") = "auto", py::arg("horizon") = false, py::arg("bands") = 8, py::arg("epsilon") = 0.01,
-        py::arg("nonfinite") = "error",
+        py::arg("resolution") = "auto", py::arg("horizon") = false, py::arg("bands") = 8,
+        py::arg("epsilon") = 0.01, py::arg("nonfinite") = "error",
         "Read a probe with OpenImageIO and bake it; the same dict as bake(), plus 'path'.");
-  m.def("sh_project", &shProject, py::arg("pixels"), py::kw_only(), py::arg("bands"),
-        py::arg("projection") = "latlong", py::arg("window") = "none", py::arg("irradiance") = false,
-        py::arg("nonfinite") = "error",
-        "Real SH coefficients (bands^2 x 3; Sloan order, orthonormal, Condon-Shortley phase, theta from +Z).");
-  m.def("sh_sample", &shSample, py::arg("pixels"), py::kw_only(), py::arg("bands"), py::arg("epsilon") = 0.01,
-        py::arg("samples") = 1024, py::arg("depth") = 8, py::arg("seed") = 1, py::arg("projection") = "latlong",
-        py::arg("nonfinite") = "error",
-        "(directions (N,3), pdf (N,)) from the SH importance sampler of the probe's luminance (Berger 2011).");
+  m.def(
+      "sh_project", &shProject, py::arg("pixels"), py::kw_only(), py::arg("bands"),
+      py::arg("projection") = "latlong", py::arg("window") = "none", py::arg("irradiance") = false,
+      py::arg("nonfinite") = "error",
+      "Real SH coefficients (bands^2 x 3; Sloan order, orthonormal, Condon-Shortley phase, theta from +Z).");
+  m.def(
+      "sh_sample", &shSample, py::arg("pixels"), py::kw_only(), py::arg("bands"), py::arg("epsilon") = 0.01,
+      py::arg("samples") = 1024, py::arg("depth") = 8, py::arg("seed") = 1, py::arg("projection") = "latlong",
+      py::arg("nonfinite") = "error",
+      "(directions (N,3), pdf (N,)) from the SH importance sampler of the probe's luminance (Berger 2011).");
   m.attr("__version__") = "0.1.0";
 }

@@ -15,10 +15,14 @@ unsigned parseEffects(const std::string& list) {
   std::stringstream ss(list);
   std::string item;
   while (std::getline(ss, item, ',')) {
-    if (item == "diffuse") effects |= kDiffuse;
-    else if (item == "shadow" || item == "shadows") effects |= kShadow;
-    else if (item == "glossy") effects |= kGlossy;
-    else throw Error("unknown effect '" + item + "': use diffuse, shadow and glossy, separated by commas");
+    if (item == "diffuse")
+      effects |= kDiffuse;
+    else if (item == "shadow" || item == "shadows")
+      effects |= kShadow;
+    else if (item == "glossy")
+      effects |= kGlossy;
+    else
+      throw Error("unknown effect '" + item + "': use diffuse, shadow and glossy, separated by commas");
   }
   if (!effects) throw Error("no effects given: use diffuse, shadow and/or glossy");
   return effects;
@@ -26,7 +30,8 @@ unsigned parseEffects(const std::string& list) {
 
 std::string effectsToString(unsigned e) {
   std::string s;
-  for (auto [bit, name] : {std::pair{kDiffuse, "diffuse"}, std::pair{kShadow, "shadow"}, std::pair{kGlossy, "glossy"}}) {
+  for (auto [bit, name] :
+       {std::pair{kDiffuse, "diffuse"}, std::pair{kShadow, "shadow"}, std::pair{kGlossy, "glossy"}}) {
     if (!(e & bit)) continue;
     if (!s.empty()) s.push_back(',');
     s.append(name);
@@ -91,8 +96,8 @@ std::vector<Rgb> truthAt(const std::vector<Vec3>& dirs, const std::vector<Rgb>& 
 }  // namespace
 
 bool Evaluator::visible(const Vec3& p, const Vec3& d) {
-  // Ray p + t d against the sphere |x - c| = 1, c = (0, 0, 1); p is outside it. Hit iff the ray's closest approach
-  // is ahead (b < 0) and within the radius (discriminant > 0).
+  // Ray p + t d against the sphere |x - c| = 1, c = (0, 0, 1); p is outside it. Hit iff the ray's closest
+  // approach is ahead (b < 0) and within the radius (discriminant > 0).
   const Vec3 o = p - Vec3{0, 0, 1};
   const double b = dot(d, o), cc = dot(o, o) - 1.0;
   return !(b < 0 && b * b - cc > 0);
@@ -106,8 +111,8 @@ Evaluator::Evaluator(const Probe& probe, unsigned effects, EvaluatorOptions opti
   std::vector<std::vector<PixelSums>> rows(ch);
   parallelFor(ch, [&](std::int64_t y) {
     rows[y].assign(cw, PixelSums{});
-    accumulateRows(probe, static_cast<int>(y) * cell, std::min(probe.height(), static_cast<int>(y + 1) * cell), 0,
-                   probe.width(), cell, rows[y]);
+    accumulateRows(probe, static_cast<int>(y) * cell,
+                   std::min(probe.height(), static_cast<int>(y + 1) * cell), 0, probe.width(), cell, rows[y]);
   });
   for (const auto& row : rows)
     for (const PixelSums& s : row) {
@@ -122,13 +127,15 @@ Evaluator::Evaluator(const Probe& probe, unsigned effects, EvaluatorOptions opti
                        [&](std::size_t i, const Vec3& d) { return std::max(0.0, dot(normals_[i], d)); });
     if (options.forRefit) {
       fitNormals_ = fibonacciSphere(1024);
-      fitTruth_ = truthAt(directions_, radiance_, fitNormals_.size(),
-                          [&](std::size_t i, const Vec3& d) { return std::max(0.0, dot(fitNormals_[i], d)); });
+      fitTruth_ = truthAt(directions_, radiance_, fitNormals_.size(), [&](std::size_t i, const Vec3& d) {
+        return std::max(0.0, dot(fitNormals_[i], d));
+      });
     }
   }
   if (effects & kShadow) {
     for (int i = 0; i < 16; ++i)
-      for (int j = 0; j < 16; ++j) points_.push_back({-2.5 + 5.0 * (i + 0.5) / 16, -2.5 + 5.0 * (j + 0.5) / 16, 0.0});
+      for (int j = 0; j < 16; ++j)
+        points_.push_back({-2.5 + 5.0 * (i + 0.5) / 16, -2.5 + 5.0 * (j + 0.5) / 16, 0.0});
     shadow_ = truthAt(directions_, radiance_, points_.size(), [&](std::size_t i, const Vec3& d) {
       return d.z > 0 && visible(points_[i], d) ? d.z : 0.0;
     });
@@ -175,14 +182,16 @@ EffectErrors Evaluator::evaluate(const std::vector<Light>& lights) const {
     return out;
   };
   if (effects_ & kDiffuse)
-    e.diffuse = relativeRms(answer(normals_, [&](const Vec3& n) { return lightsDiffuse(lights, n); }), diffuse_);
+    e.diffuse =
+        relativeRms(answer(normals_, [&](const Vec3& n) { return lightsDiffuse(lights, n); }), diffuse_);
   if (effects_ & kShadow)
     e.shadow = relativeRms(answer(points_, [&](const Vec3& p) { return lightsShadow(lights, p); }), shadow_);
   if (effects_ & kGlossy) {
     // The two lobes' errors combined as one RMS over both sets of points.
     double d = 0, t = 0;
     for (int k = 0; k < 2; ++k) {
-      auto got = answer(normals_, [&](const Vec3& r) { return lightsGlossy(lights, r, kGlossyExponents[k]); });
+      auto got =
+          answer(normals_, [&](const Vec3& r) { return lightsGlossy(lights, r, kGlossyExponents[k]); });
       double rel = relativeRms(got, glossy_[k]);
       double tt = 0;
       for (const Rgb& v : glossy_[k]) tt += luminance(v) * luminance(v);
@@ -194,20 +203,24 @@ EffectErrors Evaluator::evaluate(const std::vector<Light>& lights) const {
   return e;
 }
 
-std::vector<double> nonNegativeLeastSquares(const std::vector<double>& A, int m, int n, const std::vector<double>& b) {
-  // Lawson & Hanson (1974), chapter 23: an active-set method; P is the set of free (positive) variables. It works on
-  // the normal equations G = A^T A, c = A^T b, built once: a step costs O(n^2) and a solve on P O(|P|^3).
+std::vector<double> nonNegativeLeastSquares(const std::vector<double>& A, int m, int n,
+                                            const std::vector<double>& b) {
+  // Lawson & Hanson (1974), chapter 23: an active-set method; P is the set of free (positive) variables. It
+  // works on the normal equations G = A^T A, c = A^T b, built once: a step costs O(n^2) and a solve on P
+  // O(|P|^3).
   std::vector<double> G(static_cast<std::size_t>(n) * n, 0.0), c(n, 0.0);
   for (int i = 0; i < m; ++i)
     for (int j = 0; j < n; ++j) {
       const double aij = A[static_cast<std::size_t>(i) * n + j];
       if (aij == 0) continue;
       c[j] += aij * b[i];
-      for (int k = 0; k <= j; ++k) G[static_cast<std::size_t>(j) * n + k] += aij * A[static_cast<std::size_t>(i) * n + k];
+      for (int k = 0; k <= j; ++k)
+        G[static_cast<std::size_t>(j) * n + k] += aij * A[static_cast<std::size_t>(i) * n + k];
     }
   double trace = 0;
   for (int j = 0; j < n; ++j) {
-    for (int k = 0; k < j; ++k) G[static_cast<std::size_t>(k) * n + j] = G[static_cast<std::size_t>(j) * n + k];
+    for (int k = 0; k < j; ++k)
+      G[static_cast<std::size_t>(k) * n + j] = G[static_cast<std::size_t>(j) * n + k];
     trace += G[static_cast<std::size_t>(j) * n + j];
   }
   const double ridge = 1e-12 * trace / std::max(1, n);  // keeps rank-deficient sub-problems solvable
@@ -277,7 +290,58 @@ std::vector<double> nonNegativeLeastSquares(const std::vector<double>& A, int m,
   return x;
 }
 
-std::vector<Light> refitIrradiance(const Evaluator& evaluator, const std::vector<Light>& lights, double* energyShift) {
+namespace {
+
+Vec3 rotateAbout(const Vec3& d, const Vec3& axis, double angle) {  // Rodrigues' rotation
+  const Vec3 k = (1.0 / axis.length()) * axis;
+  const Vec3 kxd{k.y * d.z - k.z * d.y, k.z * d.x - k.x * d.z, k.x * d.y - k.y * d.x};
+  return std::cos(angle) * d + std::sin(angle) * kxd + (dot(k, d) * (1 - std::cos(angle))) * k;
+}
+
+// Coordinate descent on the lights' directions against the luminance irradiance on the fit normals, colours
+// fixed. The sum of the lights' irradiance per normal is kept, so a trial move of one light costs one pass
+// over the normals.
+void moveDirections(const std::vector<Vec3>& normals, const std::vector<Rgb>& truth,
+                    std::vector<Light>& lights) {
+  const std::size_t m = normals.size();
+  std::vector<double> target(m), sum(m, 0.0), term(m), trial(m);
+  for (std::size_t i = 0; i < m; ++i) target[i] = luminance(truth[i]);
+  auto contribution = [&](const Light& l, std::vector<double>& out) {
+    const double y = luminance(l.rgb);
+    for (std::size_t i = 0; i < m; ++i) out[i] = y * std::max(0.0, dot(normals[i], l.direction));
+  };
+  for (const Light& l : lights) {
+    contribution(l, term);
+    for (std::size_t i = 0; i < m; ++i) sum[i] += term[i];
+  }
+  auto error = [&](const std::vector<double>& s) {
+    double e = 0;
+    for (std::size_t i = 0; i < m; ++i) e += (s[i] - target[i]) * (s[i] - target[i]);
+    return e;
+  };
+  double current = error(sum);
+  for (double step : {4.0, 2.0, 1.0, 0.5})
+    for (Light& l : lights) {
+      const Vec3 d = l.direction;
+      const Vec3 t1 = std::abs(d.z) < 0.9 ? Vec3{-d.y, d.x, 0} : Vec3{0, -d.z, d.y};
+      const Vec3 t2{d.y * t1.z - d.z * t1.y, d.z * t1.x - d.x * t1.z, d.x * t1.y - d.y * t1.x};
+      for (const Vec3& axis : {t1, t2})
+        for (double sign : {1.0, -1.0}) {
+          contribution(l, term);
+          Light moved = l;
+          moved.direction = rotateAbout(l.direction, axis, sign * step * kPi / 180);
+          contribution(moved, trial);
+          for (std::size_t i = 0; i < m; ++i) trial[i] = sum[i] - term[i] + trial[i];
+          const double e = error(trial);
+          if (e < current) current = e, sum.swap(trial), l.direction = moved.direction;
+        }
+    }
+}
+
+}  // namespace
+
+std::vector<Light> refitIrradiance(const Evaluator& evaluator, const std::vector<Light>& lights,
+                                   double* energyShift, bool moveDirs) {
   // Fitted on 1024 normals, not the 256 the error is measured on, so the error of a refit is not flattered.
   const auto& normals = evaluator.fitNormals();
   const auto& truth = evaluator.fitTruth();
@@ -288,20 +352,25 @@ std::vector<Light> refitIrradiance(const Evaluator& evaluator, const std::vector
   const int m = static_cast<int>(normals.size()), n = static_cast<int>(lights.size());
   std::vector<Light> out = lights;
   if (n == 0) return out;
-  std::vector<double> A(static_cast<std::size_t>(m) * n);
-  for (int i = 0; i < m; ++i)
-    for (int j = 0; j < n; ++j) A[i * n + j] = std::max(0.0, dot(normals[i], lights[j].direction));
-  double before = 0, after = 0;
-  for (int c = 0; c < 3; ++c) {
-    std::vector<double> b(m);
-    for (int i = 0; i < m; ++i) b[i] = truth[i][c];
-    std::vector<double> x = nonNegativeLeastSquares(A, m, n, b);
-    for (int j = 0; j < n; ++j) {
-      before += lights[j].rgb[c];
-      out[j].rgb[c] = x[j];
-      after += x[j];
+  auto solveColours = [&](std::vector<Light>& ls) {
+    std::vector<double> A(static_cast<std::size_t>(m) * n);
+    for (int i = 0; i < m; ++i)
+      for (int j = 0; j < n; ++j) A[i * n + j] = std::max(0.0, dot(normals[i], ls[j].direction));
+    for (int c = 0; c < 3; ++c) {
+      std::vector<double> b(m);
+      for (int i = 0; i < m; ++i) b[i] = truth[i][c];
+      std::vector<double> x = nonNegativeLeastSquares(A, m, n, b);
+      for (int j = 0; j < n; ++j) ls[j].rgb[c] = x[j];
     }
+  };
+  solveColours(out);
+  for (int round = 0; moveDirs && round < 3; ++round) {
+    moveDirections(normals, truth, out);
+    solveColours(out);
   }
+  double before = 0, after = 0;
+  for (int j = 0; j < n; ++j)
+    for (int c = 0; c < 3; ++c) before += lights[j].rgb[c], after += out[j].rgb[c];
   double total = 0;
   for (const Light& l : out) total += luminance(l.rgb);
   for (Light& l : out) l.energyShare = total > 0 ? luminance(l.rgb) / total : 0.0;

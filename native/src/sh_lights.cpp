@@ -12,7 +12,9 @@ namespace probelights {
 
 namespace {
 using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+double msSince(Clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
 }  // namespace
 
 int stratumOf(std::array<double, 2> u, int count) {
@@ -80,8 +82,8 @@ ShLightResult shLights(const Probe& probe, const ShLightOptions& o) {
   result.lights = lightsFromSums(probe, bounds, sums);
   result.lightsMs = msSince(t);
   if (static_cast<int>(result.lights.size()) < o.lights)
-    result.notes.push_back("made " + std::to_string(result.lights.size()) + " lights, not " + std::to_string(o.lights) +
-                           ": " + std::to_string(o.lights - result.lights.size()) +
+    result.notes.push_back("made " + std::to_string(result.lights.size()) + " lights, not " +
+                           std::to_string(o.lights) + ": " + std::to_string(o.lights - result.lights.size()) +
                            " cells of the SH partition hold no lit pixel");
   return result;
 }

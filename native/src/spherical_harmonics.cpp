@@ -29,7 +29,8 @@ void normalizedLegendre(int bands, double z, std::span<double> out) {
     if (m + 1 < bands) out[legendreIndex(m + 1, m)] = std::sqrt(2.0 * m + 3.0) * z * mm;
     for (int l = m + 2; l < bands; ++l) {
       double a = std::sqrt((4.0 * l * l - 1.0) / (static_cast<double>(l) * l - static_cast<double>(m) * m));
-      double b = std::sqrt(((l - 1.0) * (l - 1.0) - static_cast<double>(m) * m) / (4.0 * (l - 1.0) * (l - 1.0) - 1.0));
+      double b = std::sqrt(((l - 1.0) * (l - 1.0) - static_cast<double>(m) * m) /
+                           (4.0 * (l - 1.0) * (l - 1.0) - 1.0));
       out[legendreIndex(l, m)] = a * (z * out[legendreIndex(l - 1, m)] - b * out[legendreIndex(l - 2, m)]);
     }
   }
@@ -76,9 +77,10 @@ ShCoefficients projectProbe(const Probe& probe, int bands) {
   // Per-row partial sums, added in row order afterwards: deterministic whatever the thread count.
   std::vector<std::vector<Rgb>> rows(H);
   if (projection.kind() == ProjectionKind::LatLong) {
-    // Exact for a probe that is constant over each pixel: c_lm = sum_p L_p * integral over pixel p of Y_lm, and the
-    // pixel integral is separable, (integral of N_l^|m| dz over the row) x (integral of trig(m phi) over the column),
-    // both in closed form (ShRectIntegrator). So a uniform probe gives exactly 0 above band 0.
+    // Exact for a probe that is constant over each pixel: c_lm = sum_p L_p * integral over pixel p of Y_lm,
+    // and the pixel integral is separable, (integral of N_l^|m| dz over the row) x (integral of trig(m phi)
+    // over the column), both in closed form (ShRectIntegrator). So a uniform probe gives exactly 0 above band
+    // 0.
     const ShRectIntegrator basis(bands, std::vector<double>(n, 0.0));
     const int trig = 2 * bands - 1;
     std::vector<double> phiInt(static_cast<std::size_t>(W) * trig);
@@ -164,13 +166,15 @@ ShRectIntegrator::ShRectIntegrator(int bands, std::vector<double> coefficients)
   fourier_.resize(static_cast<std::size_t>(bands) * (bands + 1) / 2);
   std::vector<double> legendre(fourier_.size());
   for (int l = 0; l < bands; ++l) {
-    // N_l^m(cos theta) is a trigonometric polynomial of degree <= l: sample it at M = 2l + 2 points and take the DFT.
+    // N_l^m(cos theta) is a trigonometric polynomial of degree <= l: sample it at M = 2l + 2 points and take
+    // the DFT.
     const int M = 2 * l + 2;
     std::vector<std::vector<double>> samples(l + 1, std::vector<double>(M));
     for (int j = 0; j < M; ++j) {
       double theta = 2.0 * kPi * j / M;
       normalizedLegendre(l + 1, std::cos(theta), legendre);
-      // sin(theta) < 0 for theta > pi: N_l^m carries sin^m(theta), continued as the polynomial in sin, so flip odd m.
+      // sin(theta) < 0 for theta > pi: N_l^m carries sin^m(theta), continued as the polynomial in sin, so
+      // flip odd m.
       double sign = std::sin(theta) < 0 ? -1.0 : 1.0;
       for (int m = 0; m <= l; ++m) samples[m][j] = legendre[legendreIndex(l, m)] * (m % 2 == 1 ? sign : 1.0);
     }
@@ -211,16 +215,20 @@ double ShRectIntegrator::thetaAntiderivative(int l, int m, double theta) const {
 void ShRectIntegrator::zIntegrals(double z0, double z1, std::span<double> out) const {
   const double t0 = std::acos(std::clamp(z0, -1.0, 1.0)), t1 = std::acos(std::clamp(z1, -1.0, 1.0));
   for (int l = 0; l < bands_; ++l)
-    for (int m = 0; m <= l; ++m) out[legendreIndex(l, m)] = thetaAntiderivative(l, m, t0) - thetaAntiderivative(l, m, t1);
+    for (int m = 0; m <= l; ++m)
+      out[legendreIndex(l, m)] = thetaAntiderivative(l, m, t0) - thetaAntiderivative(l, m, t1);
 }
 
 void ShRectIntegrator::phiIntegrals(double phi0, double phi1, std::span<double> out) const {
   // out[bands-1+m]: integral of sqrt2 cos(m phi) (m > 0), 1 (m = 0), sqrt2 sin(|m| phi) (m < 0).
   for (int m = -(bands_ - 1); m < bands_; ++m) {
     double v;
-    if (m == 0) v = phi1 - phi0;
-    else if (m > 0) v = kSqrt2 * (std::sin(m * phi1) - std::sin(m * phi0)) / m;
-    else v = kSqrt2 * (std::cos(-m * phi0) - std::cos(-m * phi1)) / (-m);
+    if (m == 0)
+      v = phi1 - phi0;
+    else if (m > 0)
+      v = kSqrt2 * (std::sin(m * phi1) - std::sin(m * phi0)) / m;
+    else
+      v = kSqrt2 * (std::cos(-m * phi0) - std::cos(-m * phi1)) / (-m);
     out[bands_ - 1 + m] = v;
   }
 }

@@ -4,9 +4,9 @@
 #include <OpenImageIO/imagebufalgo.h>
 
 #include <algorithm>
-#include <cstdio>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 
@@ -16,7 +16,9 @@ namespace probelights {
 
 namespace {
 using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+double msSince(Clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
 double bakeMs(const BakeResult& r) { return r.timings.tablesMs + r.timings.partitionMs + r.timings.lightsMs; }
 }  // namespace
 
@@ -37,7 +39,7 @@ std::vector<TradeoffRow> tradeoff(const Probe& probe, const Evaluator& evaluator
                         evaluator.evaluate(r.lights)});
         if (o.refit && (evaluator.effects() & kDiffuse) && r.lights.size() <= kMaxRefitLights) {
           auto t = Clock::now();
-          auto refit = refitIrradiance(evaluator, r.lights);
+          auto refit = refitIrradiance(evaluator, r.lights, nullptr, /*moveDirections=*/true);
           rows.push_back({method, n, static_cast<int>(refit.size()), resName, true, bakeMs(r) + msSince(t),
                           evaluator.evaluate(refit)});
         }
@@ -60,7 +62,8 @@ void writeTradeoffPlot(const std::vector<TradeoffRow>& rows, unsigned effects, c
   OIIO::ImageBufAlgo::fill(img, white);
   std::vector<TradeoffRow> pts;
   for (const TradeoffRow& r : rows)
-    if (r.errors.worst(effects) > 0 && r.bakeMs > 0 && (r.resolution == "full" || r.resolution == "-")) pts.push_back(r);
+    if (r.errors.worst(effects) > 0 && r.bakeMs > 0 && (r.resolution == "full" || r.resolution == "-"))
+      pts.push_back(r);
   if (pts.empty()) throw Error("nothing to plot");
   double tmin = 1e300, tmax = 0, emin = 1e300, emax = 0;
   for (const auto& r : pts) {
@@ -70,8 +73,12 @@ void writeTradeoffPlot(const std::vector<TradeoffRow>& rows, unsigned effects, c
   }
   const double lt0 = std::floor(std::log10(tmin)), lt1 = std::ceil(std::log10(tmax));
   const double le0 = std::floor(std::log10(emin)), le1 = std::ceil(std::log10(emax));
-  auto X = [&](double ms) { return left + (std::log10(ms) - lt0) / std::max(1e-9, lt1 - lt0) * (W - left - right); };
-  auto Y = [&](double pct) { return H - bottom - (std::log10(pct) - le0) / std::max(1e-9, le1 - le0) * (H - top - bottom); };
+  auto X = [&](double ms) {
+    return left + (std::log10(ms) - lt0) / std::max(1e-9, lt1 - lt0) * (W - left - right);
+  };
+  auto Y = [&](double pct) {
+    return H - bottom - (std::log10(pct) - le0) / std::max(1e-9, le1 - le0) * (H - top - bottom);
+  };
   auto text = [&](int x, int y, const std::string& s, int size, const float* colour) {
     OIIO::ImageBufAlgo::render_text(img, x, y, s, size, std::filesystem::exists(kFont) ? kFont : "",
                                     OIIO::cspan<float>(colour, 3));
@@ -79,7 +86,8 @@ void writeTradeoffPlot(const std::vector<TradeoffRow>& rows, unsigned effects, c
   for (double d = lt0; d <= lt1; ++d) {  // decades
     int x = static_cast<int>(X(std::pow(10, d)));
     OIIO::ImageBufAlgo::render_line(img, x, top, x, H - bottom, grey);
-    text(x - 12, H - bottom + 22, d >= 0 ? std::to_string(static_cast<long long>(std::pow(10, d))) : "0.1", 16, black);
+    text(x - 12, H - bottom + 22, d >= 0 ? std::to_string(static_cast<long long>(std::pow(10, d))) : "0.1",
+         16, black);
   }
   for (double d = le0; d <= le1; ++d) {
     int y = static_cast<int>(Y(std::pow(10, d)));
@@ -106,12 +114,14 @@ void writeTradeoffPlot(const std::vector<TradeoffRow>& rows, unsigned effects, c
       if (refit)
         for (float& v : c) v = 0.45f + 0.55f * v;  // lighter: the same bakes, refit
       for (std::size_t i = 0; i < curve.size(); ++i) {
-        int x = static_cast<int>(X(curve[i]->bakeMs)), y = static_cast<int>(Y(100 * curve[i]->errors.worst(effects)));
+        int x = static_cast<int>(X(curve[i]->bakeMs)),
+            y = static_cast<int>(Y(100 * curve[i]->errors.worst(effects)));
         OIIO::ImageBufAlgo::render_box(img, x - 3, y - 3, x + 3, y + 3, c, true);
         if (!refit) text(x + 5, y - 5, std::to_string(curve[i]->lights), 12, c);
         if (i > 0)
           OIIO::ImageBufAlgo::render_line(img, static_cast<int>(X(curve[i - 1]->bakeMs)),
-                                          static_cast<int>(Y(100 * curve[i - 1]->errors.worst(effects))), x, y, c);
+                                          static_cast<int>(Y(100 * curve[i - 1]->errors.worst(effects))), x,
+                                          y, c);
       }
       OIIO::ImageBufAlgo::render_box(img, W - right + 15, legend - 8, W - right + 35, legend + 2, c, true);
       text(W - right + 42, legend + 2, toString(method) + (refit ? " + refit" : ""), 16, black);
@@ -120,17 +130,19 @@ void writeTradeoffPlot(const std::vector<TradeoffRow>& rows, unsigned effects, c
   text(W - right + 15, legend + 20, "error: " + effectsToString(effects), 14, black);
   text(W - right + 15, legend + 40, "(worst of them, rms %)", 14, black);
   text(W - right + 15, legend + 60, "labels: lights", 14, black);
-  if (!img.write(path, OIIO::TypeDesc::UINT8)) throw Error("cannot write plot '" + path + "': " + img.geterror());
+  if (!img.write(path, OIIO::TypeDesc::UINT8))
+    throw Error("cannot write plot '" + path + "': " + img.geterror());
 }
 
-AutoCountResult autoCount(const Probe& probe, const Evaluator& evaluator, BakeOptions options, double tolerance,
-                          bool refit, int maxLights) {
+AutoCountResult autoCount(const Probe& probe, const Evaluator& evaluator, BakeOptions options,
+                          double tolerance, bool refit, int maxLights, bool moveDirections) {
   if (!(tolerance > 0)) throw Error("the error tolerance must be positive");
   AutoCountResult best;
   auto attempt = [&](int n) {
     options.lights = n;
     BakeResult r = bake(probe, options);
-    if (refit && r.lights.size() <= kMaxRefitLights) r.lights = refitIrradiance(evaluator, r.lights);
+    if (refit && r.lights.size() <= kMaxRefitLights)
+      r.lights = refitIrradiance(evaluator, r.lights, nullptr, moveDirections);
     EffectErrors e = evaluator.evaluate(r.lights);
     best.tried.push_back({n, e.worst(evaluator.effects())});
     return std::pair{std::move(r), e};
@@ -146,7 +158,8 @@ AutoCountResult autoCount(const Probe& probe, const Evaluator& evaluator, BakeOp
     }
     lo = n;
     best.bake = std::move(r), best.errors = e, best.lights = n;
-    if (static_cast<int>(best.bake.lights.size()) < n) break;  // fewer lit pixels than lights: more cannot help
+    if (static_cast<int>(best.bake.lights.size()) < n)
+      break;  // fewer lit pixels than lights: more cannot help
   }
   if (!best.met) return best;
   while (hi - lo > 1) {
@@ -173,9 +186,11 @@ EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOpt
   }
   const Evaluator evaluator(probe, a.effects, EvaluatorOptions{a.evaluatorWidth, a.refit});
   if (a.maxError > 0) {
-    AutoCountResult chosen = autoCount(probe, evaluator, options, a.maxError, a.refit);
+    AutoCountResult chosen =
+        autoCount(probe, evaluator, options, a.maxError, a.refit, 1024, a.moveDirections);
     out.bake = std::move(chosen.bake);
-    out.autoCount = true, out.met = chosen.met, out.tried = std::move(chosen.tried), out.lights = chosen.lights;
+    out.autoCount = true, out.met = chosen.met, out.tried = std::move(chosen.tried),
+    out.lights = chosen.lights;
     char line[200];
     std::snprintf(line, sizeof line, "%s: %d lights, worst error %.2f%% (asked at most %.2f%%)",
                   chosen.met ? "auto count" : "auto count missed the tolerance", chosen.lights,
@@ -187,7 +202,7 @@ EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOpt
     if (a.refit) {
       if (out.bake.lights.size() > kMaxRefitLights)
         throw Error("the refit takes at most " + std::to_string(kMaxRefitLights) + " lights");
-      out.bake.lights = refitIrradiance(evaluator, out.bake.lights, &out.energyShift);
+      out.bake.lights = refitIrradiance(evaluator, out.bake.lights, &out.energyShift, a.moveDirections);
     }
   }
   out.evaluated = true;

@@ -104,6 +104,18 @@ TEST(Refit, LowersTheDiffuseErrorOnRealProbes) {
   EXPECT_THROW(refitIrradiance(Evaluator(probe, kDiffuse), std::vector<Light>(3)), Error);  // not made for refit
 }
 
+TEST(Refit, MovingDirectionsLowersItFurther) {
+  Probe probe = Probe::load(PROBELIGHTS_BUNDLED_PROBE);
+  Evaluator ev(probe, kDiffuse | kShadow, {2048, true});
+  BakeOptions o;
+  o.lights = 16;
+  auto lights = bake(probe, o).lights;
+  auto colours = refitIrradiance(ev, lights);
+  auto moved = refitIrradiance(ev, lights, nullptr, true);
+  EXPECT_LT(ev.evaluate(moved).diffuse, ev.evaluate(colours).diffuse);
+  for (const Light& l : moved) EXPECT_NEAR(l.direction.length(), 1.0, 1e-9);
+}
+
 TEST(AutoCount, FindsTheSmallestCountThatMeetsTheTolerance) {
   Probe probe = Probe::load(PROBELIGHTS_BUNDLED_PROBE);
   Evaluator ev(probe, kDiffuse);

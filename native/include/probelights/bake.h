@@ -21,8 +21,8 @@ struct BakeOptions {
   int lights = 16;
   CentroidWeight centroid = CentroidWeight::Energy;
   WorkingResolution resolution;
-  // Lat-long probes: make the first cut at the horizon so no light mixes sky and ground (partition.h). Off gives
-  // the papers' algorithms exactly.
+  // Lat-long probes: make the first cut at the horizon so no light mixes sky and ground (partition.h). Off
+  // gives the papers' algorithms exactly.
   bool splitAtHorizon = false;
   // Method::SphericalHarmonics (sh_lights.h): bands of the projection, Berger's epsilon, warping depth.
   int shBands = 8;
@@ -36,12 +36,13 @@ struct BakeTimings {
 
 struct BakeResult {
   std::vector<Light> lights;
-  std::vector<Rect> regions;  // every region in pixels (they tile the image), or for "sh" each cell's bounding box
+  std::vector<Rect>
+      regions;  // every region in pixels (they tile the image), or for "sh" each cell's bounding box
   bool regionsAreRects = true;
-  std::vector<Cut> cuts;      // in pixels, in the order they were made
+  std::vector<Cut> cuts;  // in pixels, in the order they were made
   int cellSize = 1;
   bool horizonSplit = false;  // whether the first cut is at the horizon
-  Rgb totalRgb{};  // the probe's integral of L over the sphere
+  Rgb totalRgb{};             // the probe's integral of L over the sphere
   BakeTimings timings;
   std::vector<std::string> notes;
 };

@@ -1,14 +1,15 @@
-// Simulating only the effects a scene calls for: each effect's ground truth computed from the full probe, and the
-// lights' answer in closed form, at a fixed set of sample points; no general renderer.
-//   diffuse: irradiance E(n) = sum over the probe of L max(0, n.w) dw on 256 well-spread normals (Fibonacci sphere);
-//   shadow:  irradiance on a ground plane (z = 0, normal +Z) at 16 x 16 points of [-2.5, 2.5]^2 under a sphere of
+// Simulating only the effects a scene calls for: each effect's ground truth computed from the full probe, and
+// the lights' answer in closed form, at a fixed set of sample points; no general renderer.
+//   diffuse: irradiance E(n) = sum over the probe of L max(0, n.w) dw on 256 well-spread normals (Fibonacci
+//   sphere); shadow:  irradiance on a ground plane (z = 0, normal +Z) at 16 x 16 points of [-2.5, 2.5]^2
+//   under a sphere of
 //            radius 1 resting on it at the origin, visibility by analytic ray-sphere tests;
 //   glossy:  a normalized Phong lobe (n + 1) / (2 pi) max(0, r.w)^n, n = 8 and 64, around 256 directions r.
 // Error of an effect = relative RMS of luminance over its points: rms(lights - truth) / rms(truth).
-// Lights are point (delta) lights: each contributes rgb x kernel(direction). The probe is used pixel by pixel up to
-// 2048 pixels wide (EvaluatorOptions::maxWidth); wider probes are grouped into cells of whole pixels with exact rgb
-// sums at their energy centroid (at 2048 a cell is at most 0.18 degrees across: nothing the smooth kernels resolve;
-// the add-on's quick estimate uses 512).
+// Lights are point (delta) lights: each contributes rgb x kernel(direction). The probe is used pixel by pixel
+// up to 2048 pixels wide (EvaluatorOptions::maxWidth); wider probes are grouped into cells of whole pixels
+// with exact rgb sums at their energy centroid (at 2048 a cell is at most 0.18 degrees across: nothing the
+// smooth kernels resolve; the add-on's quick estimate uses 512).
 #pragma once
 
 #include <limits>
@@ -32,7 +33,8 @@ struct EffectErrors {
 };
 
 struct EvaluatorOptions {
-  int maxWidth = 2048;  // probe samples: pixels up to this width, cells of whole pixels beyond (exact rgb sums)
+  int maxWidth =
+      2048;  // probe samples: pixels up to this width, cells of whole pixels beyond (exact rgb sums)
   bool forRefit = false;  // also the 1024 fit normals the irradiance refit needs
 };
 
@@ -48,7 +50,8 @@ class Evaluator {
   const std::vector<Rgb>& diffuseTruth() const { return diffuse_; }
   const std::vector<Vec3>& groundPoints() const { return points_; }
   const std::vector<Rgb>& shadowTruth() const { return shadow_; }
-  // A denser, different set of normals the irradiance refit is fitted on (so it is judged on points it did not see).
+  // A denser, different set of normals the irradiance refit is fitted on (so it is judged on points it did
+  // not see).
   const std::vector<Vec3>& fitNormals() const { return fitNormals_; }
   const std::vector<Rgb>& fitTruth() const { return fitTruth_; }
 
@@ -70,16 +73,21 @@ class Evaluator {
   std::vector<Rgb> glossy_[2];
 };
 
-// Irradiance-exact intensities: keeps each light's direction and re-solves its non-negative colour, per channel, by
-// non-negative least squares (Lawson & Hanson 1974) so the lights' diffuse irradiance matches the probe's on the
-// evaluator's 1024 fit normals. Returns the refit lights; `energyShift` (if given) gets sum(new) / sum(old) - 1.
-// At most kMaxRefitLights lights (the active-set solve grows with the cube of the count; beyond it the plain
-// lights are already within a fraction of a percent).
+// Irradiance-exact intensities: keeps each light's direction and re-solves its non-negative colour, per
+// channel, by non-negative least squares (Lawson & Hanson 1974) so the lights' diffuse irradiance matches the
+// probe's on the evaluator's 1024 fit normals. Returns the refit lights; `energyShift` (if given) gets
+// sum(new) / sum(old) - 1. At most kMaxRefitLights lights (the active-set solve grows with the cube of the
+// count; beyond it the plain lights are already within a fraction of a percent).
 inline constexpr std::size_t kMaxRefitLights = 256;
+// moveDirections: also moves each light's direction (coordinate descent: steps of 4, 2, 1 and 0.5 degrees
+// along two tangent axes, kept when the fit improves; three rounds, each followed by the NNLS colours).
+// Measured at 16 lights on studiolights: diffuse error 1.8 -> 1.3 % (city), 2.3 -> 1.5 % (sunset), 3.0 -> 1.9
+// % (Kerner), shadows unchanged or better.
 std::vector<Light> refitIrradiance(const Evaluator& evaluator, const std::vector<Light>& lights,
-                                   double* energyShift = nullptr);
+                                   double* energyShift = nullptr, bool moveDirections = false);
 
 // Lawson-Hanson NNLS: x >= 0 minimizing |A x - b| (A is m x n, row-major). Exposed for tests.
-std::vector<double> nonNegativeLeastSquares(const std::vector<double>& A, int m, int n, const std::vector<double>& b);
+std::vector<double> nonNegativeLeastSquares(const std::vector<double>& A, int m, int n,
+                                            const std::vector<double>& b);
 
 }  // namespace probelights

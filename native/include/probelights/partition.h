@@ -68,11 +68,11 @@ struct Partition {
   std::vector<std::string> notes;
 };
 
-// horizonRow: for a lat-long probe, the working-grid row where the horizon is (-1: none). When set and N >= 2, the
-// first cut is there, so no light mixes sky and ground: a region across the horizon would put its light at the
-// mean of both, and a ground plane then blocks sky light it should pass. (Measured in Cycles renders of a sphere
-// over a plane it did not lower the error at 64 lights and raised it at 16, so it is off by default.) After it,
-// every split is by priority.
+// horizonRow: for a lat-long probe, the working-grid row where the horizon is (-1: none). When set and N >=
+// 2, the first cut is there, so no light mixes sky and ground: a region across the horizon would put its
+// light at the mean of both, and a ground plane then blocks sky light it should pass. (Measured in Cycles
+// renders of a sphere over a plane it did not lower the error at 64 lights and raised it at 16, so it is off
+// by default.) After it, every split is by priority.
 Partition partitionSphere(const MomentTable& table, const CutRule& rule, int count, int horizonRow = -1);
 
 }  // namespace probelights

@@ -1,11 +1,12 @@
-// Importance sampling of a function given by SH coefficients: hierarchical sample warping (Jarosz, Carr & Jensen
-// 2009) made robust to a reconstruction that goes negative (Berger 2011, seed 003).
+// Importance sampling of a function given by SH coefficients: hierarchical sample warping (Jarosz, Carr &
+// Jensen 2009) made robust to a reconstruction that goes negative (Berger 2011, seed 003).
 //
-// Domain: the unit square (s, t) mapped to the sphere by z = cos(theta) = 1 - 2s, phi = -pi + 2 pi t, which is
-// area-preserving (dOmega = 4 pi ds dt). A quadtree of `depth` levels splits every node into quadrants; the exact
-// integrals of the reconstruction over them (ShRectIntegrator) drive a warp along s, then along t inside the chosen
-// half. Berger's rules (section 3):
-//   - each warp probability is clamped to [epsilon, 1 - epsilon], so every quadrant keeps at least epsilon^2 of its
+// Domain: the unit square (s, t) mapped to the sphere by z = cos(theta) = 1 - 2s, phi = -pi + 2 pi t, which
+// is area-preserving (dOmega = 4 pi ds dt). A quadtree of `depth` levels splits every node into quadrants;
+// the exact integrals of the reconstruction over them (ShRectIntegrator) drive a warp along s, then along t
+// inside the chosen half. Berger's rules (section 3):
+//   - each warp probability is clamped to [epsilon, 1 - epsilon], so every quadrant keeps at least epsilon^2
+//   of its
 //     parent and no part of the sphere is left unsampled;
 //   - in a node whose total integral is not positive the recursion stops and the sample stays uniform there
 //     (likewise a half whose integral is not positive is split evenly);
@@ -45,20 +46,24 @@ class ShSampler {
 
  private:
   struct Split {
-    bool positive;      // the node's integral > 0: it is warped, else uniform below
-    double pS;          // probability of the first half along s (clamped)
-    double pT[2];       // probability of the first half along t, in each s half (clamped)
+    bool positive;  // the node's integral > 0: it is warped, else uniform below
+    double pS;      // probability of the first half along s (clamped)
+    double pT[2];   // probability of the first half along t, in each s half (clamped)
   };
-  const Split& split(int level, int is, int it) const { return splits_[level][static_cast<std::size_t>(is) << level | it]; }
+  const Split& split(int level, int is, int it) const {
+    return splits_[level][static_cast<std::size_t>(is) << level | it];
+  }
 
   double epsilon_;
   int depth_;
-  std::vector<std::vector<double>> levels_;  // integrals of the nodes at each level, 2^k x 2^k, row-major (s, t)
-  std::vector<std::vector<Split>> splits_;   // per level < depth
+  std::vector<std::vector<double>>
+      levels_;  // integrals of the nodes at each level, 2^k x 2^k, row-major (s, t)
+  std::vector<std::vector<Split>> splits_;  // per level < depth
 };
 
-// The Rec. 709 luminance SH of a probe, offset until the reconstruction is nowhere negative (Jarosz et al.'s remedy,
-// which Berger argues against: it flattens the distribution). For comparisons in tests and benchmarks.
+// The Rec. 709 luminance SH of a probe, offset until the reconstruction is nowhere negative (Jarosz et al.'s
+// remedy, which Berger argues against: it flattens the distribution). For comparisons in tests and
+// benchmarks.
 std::vector<double> offsetUntilPositive(int bands, std::vector<double> coefficients);
 
 }  // namespace probelights

@@ -1,7 +1,8 @@
-// How well a pdf serves as an importance function for irradiance: the exact per-sample variance of the Monte Carlo
-// estimator X = Y(w) max(0, n.w) / pdf(w) of E(n) = integral of Y max(0, n.w) dw, for a probe of piecewise-constant
-// pixels: Var = sum over pixels of (Y cos+)^2 / pdf * dOmega - E^2 (pdf at pixel centres). No random numbers, so the
-// comparison of samplers is exact and repeatable (tests/native/sh_sampler_test.cpp, native/bench/sh_benchmark.cpp).
+// How well a pdf serves as an importance function for irradiance: the exact per-sample variance of the Monte
+// Carlo estimator X = Y(w) max(0, n.w) / pdf(w) of E(n) = integral of Y max(0, n.w) dw, for a probe of
+// piecewise-constant pixels: Var = sum over pixels of (Y cos+)^2 / pdf * dOmega - E^2 (pdf at pixel centres).
+// No random numbers, so the comparison of samplers is exact and repeatable (tests/native/sh_sampler_test.cpp,
+// native/bench/sh_benchmark.cpp).
 #pragma once
 
 #include <functional>

@@ -1,6 +1,6 @@
-// What accuracy costs in time: bakes over a grid of knobs (methods x light counts x working resolutions x with and
-// without the irradiance refit), each evaluated on the effects asked for; and the auto count, the fewest lights that
-// meet a tolerance.
+// What accuracy costs in time: bakes over a grid of knobs (methods x light counts x working resolutions x
+// with and without the irradiance refit), each evaluated on the effects asked for; and the auto count, the
+// fewest lights that meet a tolerance.
 #pragma once
 
 #include <string>
@@ -13,22 +13,24 @@ namespace probelights {
 
 struct TradeoffRow {
   Method method;
-  int lights = 0;        // asked for
-  int made = 0;          // made
+  int lights = 0;  // asked for
+  int made = 0;    // made
   std::string resolution;
   bool refit = false;
-  double bakeMs = 0;     // tables + partition + lights (+ refit)
+  double bakeMs = 0;  // tables + partition + lights (+ refit)
   EffectErrors errors;
 };
 
 struct TradeoffOptions {
   std::vector<Method> methods{Method::MedianCut, Method::Variance, Method::SphericalHarmonics};
   std::vector<int> counts{1, 2, 4, 8, 16, 32, 64, 128, 256, 512, 1024};
-  std::vector<WorkingResolution> resolutions{{WorkingResolution::Mode::Full, 0}, {WorkingResolution::Mode::Width, 256}};
-  bool refit = true;  // also evaluate each bake refit (counts up to kMaxRefitLights)
+  std::vector<WorkingResolution> resolutions{{WorkingResolution::Mode::Full, 0},
+                                             {WorkingResolution::Mode::Width, 256}};
+  bool refit = true;  // also evaluate each bake refit, colours and directions (counts up to kMaxRefitLights)
 };
 
-std::vector<TradeoffRow> tradeoff(const Probe& probe, const Evaluator& evaluator, const TradeoffOptions& options);
+std::vector<TradeoffRow> tradeoff(const Probe& probe, const Evaluator& evaluator,
+                                  const TradeoffOptions& options);
 
 // Writes error (the worst of the evaluated effects, %) against bake time (ms), log axes, one curve per method
 // (refit curves lighter), as a PNG with OpenImageIO.
@@ -39,22 +41,24 @@ struct AutoCountResult {
   BakeResult bake;
   EffectErrors errors;
   int lights = 0;
-  bool met = false;  // false: even the largest count tried missed the tolerance
+  bool met = false;                           // false: even the largest count tried missed the tolerance
   std::vector<std::pair<int, double>> tried;  // (lights, worst error)
 };
 
-// The smallest N (doubling, then bisecting) whose worst error over the evaluator's effects is <= tolerance, up to
-// maxLights; with refit, each candidate is refit first.
-AutoCountResult autoCount(const Probe& probe, const Evaluator& evaluator, BakeOptions options, double tolerance,
-                          bool refit, int maxLights = 1024);
+// The smallest N (doubling, then bisecting) whose worst error over the evaluator's effects is <= tolerance,
+// up to maxLights; with refit, each candidate is refit first.
+AutoCountResult autoCount(const Probe& probe, const Evaluator& evaluator, BakeOptions options,
+                          double tolerance, bool refit, int maxLights = 1024, bool moveDirections = false);
 
-// One bake with the accuracy options the CLI and the add-on offer: `maxError` > 0 picks the count (autoCount),
-// `refit` refits the lights' colours, and any of them (or `evaluate`) measures the errors on `effects`.
+// One bake with the accuracy options the CLI and the add-on offer: `maxError` > 0 picks the count
+// (autoCount), `refit` refits the lights' colours, and any of them (or `evaluate`) measures the errors on
+// `effects`.
 struct AccuracyOptions {
   unsigned effects = kDiffuse;
   bool evaluate = false, refit = false;
   double maxError = 0;
-  int evaluatorWidth = 2048;  // EvaluatorOptions::maxWidth (the add-on's quick estimate uses 512)
+  int evaluatorWidth = 2048;    // EvaluatorOptions::maxWidth (the add-on's quick estimate uses 512)
+  bool moveDirections = false;  // the refit also moves directions (evaluate.h)
 };
 
 struct EvaluatedBake {
