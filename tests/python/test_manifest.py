@@ -1,0 +1,31 @@
+"""The add-on installs on Blender 4.2+ as an extension: blender_manifest.toml has what the extension system requires
+and agrees with bl_info (which Blender 3.4 reads)."""
+
+import ast
+import os
+import tomllib
+
+ADDON = os.path.join(os.path.dirname(__file__), "..", "..", "addon", "probe_lights")
+
+
+def bl_info():
+    tree = ast.parse(open(os.path.join(ADDON, "__init__.py")).read())
+    for node in tree.body:
+        if isinstance(node, ast.Assign) and any(getattr(t, "id", "") == "bl_info" for t in node.targets):
+            return ast.literal_eval(node.value)
+    raise AssertionError("no bl_info")
+
+
+def test_manifest_has_the_required_fields_and_matches_bl_info():
+    m = tomllib.load(open(os.path.join(ADDON, "blender_manifest.toml"), "rb"))
+    for key in ("schema_version", "id", "version", "name", "tagline", "maintainer", "type", "blender_version_min",
+                "license"):
+        assert key in m, key
+    assert m["type"] == "add-on" and m["id"] == os.path.basename(os.path.normpath(ADDON))
+    assert len(m["tagline"]) <= 64 and not m["tagline"].endswith(".")
+    assert tuple(int(v) for v in m["blender_version_min"].split(".")) >= (4, 2, 0)
+    assert all(lic.startswith("SPDX:") for lic in m["license"])
+    assert m["platforms"] == ["linux-x64"]  # the package holds a native module
+    info = bl_info()
+    assert tuple(int(v) for v in m["version"].split(".")) == info["version"]
+    assert info["name"] == m["name"] and info["blender"] <= (3, 4, 0)
