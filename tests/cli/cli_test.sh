@@ -26,6 +26,7 @@ expect_error "unreadable file" "cannot read probe" bake "$tmp/garbage.hdr"
 expect_error "zero lights" "at least 1" bake "$probe" --lights 0
 expect_error "negative lights" "at least 1" bake "$probe" --lights -3
 expect_error "lights not a number" "whole number" bake "$probe" --lights many
+expect_error "absurd light count" "at most 65536" bake "$probe" --lights 5000000
 expect_error "unknown method" "unknown method" bake "$probe" --method magic
 expect_error "unknown option" "unknown option" bake "$probe" --frobnicate
 expect_error "no probe" "no probe" bake

@@ -293,10 +293,12 @@ TEST(Lights, Energy2CentroidLeansTowardsTheBrightestPixels) {
   EXPECT_GT(dot(energy2.lights[0].direction, hot), dot(energy.lights[0].direction, hot));
 }
 
-TEST(Bake, RejectsZeroLights) {
+TEST(Bake, RejectsZeroAndAbsurdLightCounts) {
   auto t = uniformProbe(8, 4, ProjectionKind::LatLong, {1, 1, 1});
   BakeOptions o;
   o.lights = 0;
+  EXPECT_THROW(bake(t.probe, o), Error);
+  o.lights = kMaxLights + 1;
   EXPECT_THROW(bake(t.probe, o), Error);
 }
 

@@ -47,7 +47,9 @@ struct BakeResult {
   std::vector<std::string> notes;
 };
 
-// Throws Error for a bad request (lights < 1).
+inline constexpr int kMaxLights = 65536;
+
+// Throws Error for a bad request (lights < 1 or > kMaxLights).
 BakeResult bake(const Probe& probe, const BakeOptions& options);
 
 }  // namespace probelights
