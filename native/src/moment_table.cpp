@@ -57,15 +57,10 @@ MomentTable::MomentTable(const Probe& probe, int cellSize)
   // instead.
   if (cellSize > 1) cells_.reset(new CellLight[static_cast<std::size_t>(cellsX) * cellsY]);
 
-  // Cell rows are computed in parallel batches and consumed by the table in order. Each cell row is summed by
-  // one thread in a fixed order, so the table is bit-identical whatever the thread count.
-  const int batch = std::max(4, 256 / cellSize);
-  std::vector<Values> values(static_cast<std::size_t>(batch) * cellsX);
   std::vector<PixelSums> rowTotals(cellsY);
   std::vector<long long> rowLitCells(cellsY);
-  int batchStart = -batch;
-
-  auto computeCellRow = [&](int cy, std::span<Values> out) {
+  // Each cell row is summed by one thread in a fixed order (the table is bit-identical whatever the thread count).
+  sat_ = SummedAreaTable<5>(cellsX, cellsY, [&](int cy, std::span<Values> out) {
     thread_local std::vector<PixelSums> sums;
     sums.assign(cellsX, PixelSums{});
     accumulateRows(probe, cy * cellSize, std::min(H, (cy + 1) * cellSize), 0, W, cellSize, sums);
@@ -77,24 +72,12 @@ MomentTable::MomentTable(const Probe& probe, int cellSize)
       total += c;
       litCells += c.litPixels > 0;
       if (cells_) {
-        cells_[static_cast<std::size_t>(cy) * cellsX + cx] = {
-            {c.rgb[0], c.rgb[1], c.rgb[2]}, c.solidAngle, c.energy2, {c.moment2.x, c.moment2.y, c.moment2.z}};
+        cells_[static_cast<std::size_t>(cy) * cellsX + cx] = {{c.rgb[0], c.rgb[1], c.rgb[2]}, c.solidAngle, c.energy2,
+                                                              {c.moment2.x, c.moment2.y, c.moment2.z}};
       }
     }
     rowTotals[cy] = total;
     rowLitCells[cy] = litCells;
-  };
-
-  sat_ = SummedAreaTable<5>(cellsX, cellsY, [&](int cy, std::span<Values> row) {
-    if (cy >= batchStart + batch) {
-      batchStart = cy;
-      int n = std::min(batch, cellsY - cy);
-      parallelFor(n, [&](std::int64_t i) {
-        computeCellRow(cy + static_cast<int>(i),
-                       std::span<Values>(values.data() + i * cellsX, static_cast<std::size_t>(cellsX)));
-      });
-    }
-    std::copy_n(values.data() + static_cast<std::size_t>(cy - batchStart) * cellsX, cellsX, row.begin());
   });
 
   PixelSums total;

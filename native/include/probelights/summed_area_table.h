@@ -11,6 +11,7 @@
 #pragma once
 
 #include <algorithm>
+#include <functional>
 #include <array>
 #include <cstddef>
 #include <memory>
@@ -21,6 +22,7 @@
 
 namespace probelights {
 
+// Explicitly instantiated for K = 1..5 (summed_area_table.cpp).
 template <int K>
 class SummedAreaTable {
  public:
@@ -28,30 +30,14 @@ class SummedAreaTable {
 
   SummedAreaTable() = default;
 
-  // rowValues(y, std::span<Values>) fills the `width` values of row y; rows are requested in order
-  // 0..height-1.
-  template <class RowFn>
-  SummedAreaTable(int width, int height, RowFn&& rowValues)
-      : width_(width),
-        height_(height),
-        table_(new double[static_cast<std::size_t>(width + 1) * (height + 1) *
-                          K]) {  // not zero-filled: written once
-    std::fill_n(entry(0, 0), (width + 1) * K, 0.0);
-    std::vector<Values> row(static_cast<std::size_t>(width));
-    for (int y = 0; y < height; ++y) {
-      rowValues(y, std::span<Values>(row));
-      const double* above = entry(0, y);
-      double* out = entry(0, y + 1);
-      std::fill_n(out, K, 0.0);
-      Values running{};
-      for (int x = 0; x < width; ++x) {
-        for (int k = 0; k < K; ++k) {
-          running[k] += row[x][k];
-          out[(x + 1) * K + k] = above[(x + 1) * K + k] + running[k];
-        }
-      }
-    }
-  }
+  // rowValues(y, std::span<Values>) fills the `width` values of row y. It is called for several rows at once from
+  // worker threads, so it must be safe to call concurrently for different rows.
+  //
+  // Built in two parallel passes: (1) each row's prefix sums along x, rows spread over the threads (which also
+  // spreads the first touch of the table's pages); (2) the running sums down each column, column blocks spread over
+  // the threads. Every entry gets the same additions in the same order as a one-pass build, so the table is
+  // bit-identical whatever the thread count.
+  SummedAreaTable(int width, int height, const std::function<void(int, std::span<Values>)>& rowValues);
 
   int width() const { return width_; }
   int height() const { return height_; }

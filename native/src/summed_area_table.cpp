@@ -1,0 +1,48 @@
+#include "probelights/summed_area_table.h"
+
+#include <vector>
+
+#include "parallel.h"
+
+namespace probelights {
+
+template <int K>
+SummedAreaTable<K>::SummedAreaTable(int width, int height,
+                                    const std::function<void(int, std::span<Values>)>& rowValues)
+    : width_(width),
+      height_(height),
+      table_(new double[static_cast<std::size_t>(width + 1) * (height + 1) * K]) {  // not zero-filled: written once
+  std::fill_n(entry(0, 0), (width + 1) * K, 0.0);
+  // Pass 1: table row y + 1 holds the prefix sums along row y.
+  parallelFor(height, [&](std::int64_t y) {
+    thread_local std::vector<Values> row;
+    row.assign(static_cast<std::size_t>(width), Values{});
+    rowValues(static_cast<int>(y), std::span<Values>(row));
+    double* out = entry(0, static_cast<int>(y) + 1);
+    Values running{};
+    std::fill_n(out, K, 0.0);
+    for (int x = 0; x < width; ++x)
+      for (int k = 0; k < K; ++k) {
+        running[k] += row[x][k];
+        out[(x + 1) * K + k] = running[k];
+      }
+  });
+  // Pass 2: running sums down the columns, in blocks of columns.
+  const int columns = (width + 1) * K, blocks = std::max(1, std::min(64, columns / 512));
+  parallelFor(blocks, [&](std::int64_t b) {
+    const int c0 = static_cast<int>(b * columns / blocks), c1 = static_cast<int>((b + 1) * columns / blocks);
+    for (int y = 1; y < height; ++y) {
+      const double* above = entry(0, y);
+      double* out = entry(0, y + 1);
+      for (int c = c0; c < c1; ++c) out[c] = above[c] + out[c];
+    }
+  });
+}
+
+template class SummedAreaTable<1>;
+template class SummedAreaTable<2>;
+template class SummedAreaTable<3>;
+template class SummedAreaTable<4>;
+template class SummedAreaTable<5>;
+
+}  // namespace probelights
