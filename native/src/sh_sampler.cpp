@@ -98,45 +98,43 @@ ShSampler::Sample ShSampler::sample(std::array<double, 2> u) const {
   return {toSphere(s0 + u[0] * size, t0 + u[1] * size), pdf};
 }
 
-double ShSampler::pdf(const Vec3& direction) const {
+template <class Visit>
+std::array<double, 2> ShSampler::descend(const Vec3& direction, Visit&& visit) const {
   auto [s, t] = toSquare(direction);
-  double pdf = 1.0 / (4.0 * kPi);
   int is = 0, it = 0;
   for (int k = 0; k < depth_; ++k) {
     const Split& sp = split(k, is, it);
-    if (!sp.positive) break;
-    int a = s < 0.5 ? 0 : 1, b = t < 0.5 ? 0 : 1;
+    if (!sp.positive) break;  // uniform below: nothing more to visit
+    const int a = s < 0.5 ? 0 : 1, b = t < 0.5 ? 0 : 1;
     s = 2.0 * s - a;
     t = 2.0 * t - b;
-    pdf *= 4.0 * (a == 0 ? sp.pS : 1.0 - sp.pS) * (b == 0 ? sp.pT[a] : 1.0 - sp.pT[a]);
+    visit(sp, a, b);
     is = 2 * is + a;
     it = 2 * it + b;
   }
+  return {s, t};
+}
+
+double ShSampler::pdf(const Vec3& direction) const {
+  double pdf = 1.0 / (4.0 * kPi);
+  descend(direction, [&](const Split& sp, int a, int b) {
+    pdf *= 4.0 * (a == 0 ? sp.pS : 1.0 - sp.pS) * (b == 0 ? sp.pT[a] : 1.0 - sp.pT[a]);
+  });
   return pdf;
 }
 
 std::array<double, 2> ShSampler::invert(const Vec3& direction) const {
-  auto [s, t] = toSquare(direction);
   struct Step {
     int a, b;
     const Split* sp;
   };
   Step path[16];
-  int n = 0, is = 0, it = 0;
-  for (int k = 0; k < depth_; ++k) {
-    const Split& sp = split(k, is, it);
-    if (!sp.positive) break;
-    int a = s < 0.5 ? 0 : 1, b = t < 0.5 ? 0 : 1;
-    s = 2.0 * s - a;
-    t = 2.0 * t - b;
-    path[n++] = {a, b, &sp};
-    is = 2 * is + a;
-    it = 2 * it + b;
-  }
-  // (s, t) are now the local coordinates in the last node; unwind the warps from the bottom up.
+  int n = 0;
+  auto [s, t] = descend(direction, [&](const Split& sp, int a, int b) { path[n++] = {a, b, &sp}; });
+  // (s, t) are the local coordinates in the last node; unwind the warps from the bottom up.
   for (int k = n - 1; k >= 0; --k) {
     const Split& sp = *path[k].sp;
-    int a = path[k].a, b = path[k].b;
+    const int a = path[k].a, b = path[k].b;
     t = b == 0 ? t * sp.pT[a] : sp.pT[a] + t * (1.0 - sp.pT[a]);
     s = a == 0 ? s * sp.pS : sp.pS + s * (1.0 - sp.pS);
   }

@@ -50,6 +50,10 @@ class ShSampler {
     double pS;      // probability of the first half along s (clamped)
     double pT[2];   // probability of the first half along t, in each s half (clamped)
   };
+  // Walks from the root to the node holding `direction`, calling visit(split, a, b) for each warped level (a,
+  // b: the halves taken along s and t); returns the local (s, t) in the last node.
+  template <class Visit>
+  std::array<double, 2> descend(const Vec3& direction, Visit&& visit) const;
   const Split& split(int level, int is, int it) const {
     return splits_[level][static_cast<std::size_t>(is) << level | it];
   }
