@@ -18,7 +18,8 @@ def draw_panel(layout, context):
         col.prop(settings, "soft_shadows")
     else:
         col.prop(settings, "distance")
-    col.prop(settings, "resolution")
+    if settings.method != "sh":  # the SH method does not cut on a working grid
+        col.prop(settings, "resolution")
     box = layout.box()
     box.label(text="Replace with lights:")
     row = box.row(align=True)

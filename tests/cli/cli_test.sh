@@ -60,6 +60,7 @@ for k in range(3):
 PY"
 check "preview is a PNG" "head -c 8 '$tmp/p.png' | od -An -c | grep -q 'P   N   G'"
 check "summary shows timings and energy" "grep -q 'time (ms)' '$tmp/summary' && grep -q 'max rel. diff' '$tmp/summary'"
+check "version" "'$bin' --version | grep -q '^probelights [0-9]'"
 check "JSON to stdout" "'$bin' bake '$probe' --lights 2 -o - | python3 -c 'import json,sys; json.load(sys.stdin)'"
 
 # Spherical harmonics: coefficients, samples, and the sh light method.

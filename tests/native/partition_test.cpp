@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include "probelights/bake.h"
 #include "probelights/error.h"
@@ -300,6 +301,32 @@ TEST(Bake, RejectsZeroAndAbsurdLightCounts) {
   EXPECT_THROW(bake(t.probe, o), Error);
   o.lights = kMaxLights + 1;
   EXPECT_THROW(bake(t.probe, o), Error);
+}
+
+}  // namespace
+}  // namespace probelights
+
+namespace probelights {
+namespace {
+
+// Pixels across the whole float range at once: zeros, denormals, 1e-30, 1e30 and values near FLT_MAX. Every method
+// must stay finite and conserve energy (sums are in double: 1e38 x 4pi x 1e5 pixels is far from overflow).
+TEST(HardProbes, TheWholeFloatRangeInOneProbe) {
+  const float values[] = {0.0f, 1e-42f, 1e-30f, 1.0f, 1e30f, 3.0e38f};
+  std::mt19937 rng(99);
+  std::uniform_int_distribution<int> pick(0, 5);
+  auto t = testing::makeProbe(128, 64, ProjectionKind::LatLong, [&](int, int) {
+    return Rgb{values[pick(rng)], values[pick(rng)], values[pick(rng)]};
+  });
+  for (Method m : {Method::MedianCut, Method::Variance, Method::SphericalHarmonics})
+    for (int n : {1, 7, 64}) {
+      BakeOptions o;
+      o.method = m;
+      o.lights = n;
+      auto r = bake(t.probe, o);
+      EXPECT_EQ(static_cast<int>(r.lights.size()), n) << toString(m);
+      expectFiniteAndConserving(t.probe, r, 1e-9);
+    }
 }
 
 }  // namespace
