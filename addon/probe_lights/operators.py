@@ -1,5 +1,6 @@
 """Operators: bake the world to lights, and restore the world (and remove the lights)."""
 
+import json
 import time
 
 import bpy
@@ -25,27 +26,30 @@ def _rendered_probe(world):
         bpy.data.worlds.remove(copy)
 
 
+def world_probe(world):
+    """The world's probe: (pixels, projection, a description, the ProbeSource). Read from its image where the rules
+    of world_graph.py find one, else rendered (on a copy: the world itself is not touched)."""
+    if world is None:
+        raise ProbeError("the scene has no world: add one in World properties")
+    try:
+        source = find_probe(world)
+    except ValueError as e:
+        raise ProbeError(str(e))
+    if source.image is not None:
+        return (image_pixels(source.image), source.projection,
+                "image '%s' (%s)" % (source.image.name, source.projection), source)
+    return _rendered_probe(world), "latlong", "rendered world (%s)" % source.render_reason, source
+
+
 def bake_world(context, settings):
     """Bakes the scene's world with `settings` (anything with the bake_settings() attributes). Returns a summary."""
     scene = context.scene
     world = scene.world
-    if world is None:
-        raise ProbeError("the scene has no world: add one in World properties")
     start = time.perf_counter()
     wm = context.window_manager
     wm.progress_begin(0, 100)
     try:
-        try:
-            source = find_probe(world)
-        except ValueError as e:
-            raise ProbeError(str(e))
-        if source.image is not None:
-            pixels, projection = image_pixels(source.image), source.projection
-            described = "image '%s' (%s)" % (source.image.name, projection)
-        else:
-            wm.progress_update(10)
-            pixels, projection = _rendered_probe(world), "latlong"
-            described = "rendered world (%s)" % source.render_reason
+        pixels, projection, described, source = world_probe(world)
         wm.progress_update(50)
         # The errors are estimated on the probe grouped to 512 pixels wide: ~50 ms at any probe size.
         max_error = settings.max_error / 100.0 if settings.count_mode == "TOLERANCE" else 0.0
@@ -113,6 +117,47 @@ class PROBE_LIGHTS_OT_bake(bpy.types.Operator):
         return {"FINISHED"}
 
 
+TRADEOFF_COUNTS = [4, 8, 16, 32, 64, 128, 256]
+
+
+class PROBE_LIGHTS_OT_tradeoff(bpy.types.Operator):
+    """Measure what accuracy costs: bake the world with 4 to 256 lights (with and without the refit) and show each
+    count's bake time and estimated diffuse and shadow error; nothing in the scene changes"""
+
+    bl_idname = "probe_lights.tradeoff"
+    bl_label = "Measure tradeoff"
+    bl_options = {"REGISTER"}
+
+    def execute(self, context):
+        settings = context.scene.probe_lights
+        try:
+            pixels, projection, described, _ = world_probe(context.scene.world)
+            rows = _probelights.tradeoff(pixels, projection=projection, effects="diffuse,shadow",
+                                         counts=TRADEOFF_COUNTS, methods=[settings.method], refit=True,
+                                         evaluator_width=512)
+        except (ProbeError, _probelights.Error) as e:
+            self.report({"ERROR"}, str(e))
+            return {"CANCELLED"}
+        settings.tradeoff_rows = json.dumps({"method": settings.method, "source": described, "rows": rows})
+        self.report({"INFO"}, "Measured %d light counts of %s" % (len(TRADEOFF_COUNTS), described))
+        return {"FINISHED"}
+
+
+class PROBE_LIGHTS_OT_set_count(bpy.types.Operator):
+    """Use this many lights"""
+
+    bl_idname = "probe_lights.set_count"
+    bl_label = "Use this count"
+    bl_options = {"REGISTER", "UNDO", "INTERNAL"}
+    count: bpy.props.IntProperty(min=1, max=4096)
+
+    def execute(self, context):
+        settings = context.scene.probe_lights
+        settings.count = self.count
+        settings.count_mode = "COUNT"
+        return {"FINISHED"}
+
+
 class PROBE_LIGHTS_OT_restore(bpy.types.Operator):
     """Remove the baked lights and bring the world back exactly as it was before the bake"""
 
@@ -132,4 +177,4 @@ class PROBE_LIGHTS_OT_restore(bpy.types.Operator):
         return {"FINISHED"}
 
 
-classes = (PROBE_LIGHTS_OT_bake, PROBE_LIGHTS_OT_restore)
+classes = (PROBE_LIGHTS_OT_bake, PROBE_LIGHTS_OT_restore, PROBE_LIGHTS_OT_tradeoff, PROBE_LIGHTS_OT_set_count)

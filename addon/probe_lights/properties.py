@@ -55,6 +55,7 @@ class ProbeLightsSettings(bpy.types.PropertyGroup):
         "last_notes": StringProperty(default=""),
         "last_diffuse_error": FloatProperty(default=-1.0),
         "last_shadow_error": FloatProperty(default=-1.0),
+        "tradeoff_rows": StringProperty(default=""),  # JSON from the tradeoff operator
     }
 
 

@@ -1,5 +1,7 @@
 """Panels: World properties and the 3D viewport sidebar show the same controls."""
 
+import json
+
 import bpy
 
 from .world_mix import has_mix
@@ -32,6 +34,9 @@ def draw_panel(layout, context):
     sub = row.row(align=True)
     sub.enabled = has_mix(context.scene.world) or settings.last_count > 0
     sub.operator("probe_lights.restore", icon="LOOP_BACK")
+    layout.operator("probe_lights.tradeoff", icon="SORTTIME")
+    if settings.tradeoff_rows:
+        draw_tradeoff(layout, json.loads(settings.tradeoff_rows))
     if settings.last_count:
         col = layout.column(align=True)
         col.label(text="%d lights, %.1f %% of the energy, %.0f ms" % (settings.last_count, settings.last_energy,
@@ -42,6 +47,28 @@ def draw_panel(layout, context):
                                                                             settings.last_shadow_error))
         if settings.last_notes:
             col.label(text=settings.last_notes, icon="INFO")
+
+
+def draw_tradeoff(layout, table):
+    """What accuracy costs, per light count: bake time and estimated errors, plain and refit; a count's button uses
+    it."""
+    box = layout.box()
+    box.label(text="Accuracy vs time, %s, %s" % (table["method"], table["source"]), icon="SORTTIME")
+    by_count = {}
+    for r in table["rows"]:
+        by_count.setdefault(r["lights"], {})[r["refit"]] = r
+    header = box.row()
+    for text in ("Lights", "Bake ms", "Diffuse", "Shadow", "Refit: diffuse", "Shadow"):
+        header.label(text=text)
+    for n in sorted(by_count):
+        plain, refit = by_count[n].get(False), by_count[n].get(True)
+        row = box.row()
+        row.operator("probe_lights.set_count", text=str(n)).count = n
+        row.label(text="%.1f" % plain["bake_ms"])
+        row.label(text="%.2f %%" % (100 * plain["diffuse"]))
+        row.label(text="%.2f %%" % (100 * plain["shadow"]))
+        row.label(text="%.2f %%" % (100 * refit["diffuse"]) if refit else "")
+        row.label(text="%.2f %%" % (100 * refit["shadow"]) if refit else "")
 
 
 class PROBE_LIGHTS_PT_world(bpy.types.Panel):

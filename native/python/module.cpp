@@ -196,6 +196,41 @@ py::dict bakeFile(const std::string& path, const std::string& projection, const 
   return d;
 }
 
+// The tradeoff grid (tradeoff.h) as a list of dicts: method, lights, made, resolution, refit, bake_ms, and the errors.
+py::list tradeoffRows(Pixels pixels, const std::string& projection, const std::string& effects,
+                      const std::vector<int>& counts, const std::vector<std::string>& methods, bool refit,
+                      int evaluatorWidth, const std::string& nonfinite) {
+  const ImageView view = viewOf(pixels);
+  const auto kind = projectionOf(projection);
+  const NonFinitePolicy policy = nonFinitePolicy(nonfinite);
+  TradeoffOptions options;
+  options.counts = counts;
+  options.methods.clear();
+  for (const auto& m : methods) options.methods.push_back(parseOr(parseMethod(m), "method", m, "median-cut, variance or sh"));
+  options.resolutions = {WorkingResolution{}};  // auto
+  options.refit = refit;
+  for (int n : counts)
+    if (n < 1 || n > kMaxLights) throw Error("light counts must be 1 to " + std::to_string(kMaxLights));
+  const unsigned e = parseEffects(effects);
+  std::vector<TradeoffRow> rows;
+  {
+    py::gil_scoped_release release;
+    Probe probe(view, kind, policy);
+    Evaluator evaluator(probe, e, EvaluatorOptions{evaluatorWidth, refit});
+    rows = tradeoff(probe, evaluator, options);
+  }
+  py::list out;
+  for (const TradeoffRow& r : rows) {
+    py::dict d(py::arg("method") = toString(r.method), py::arg("lights") = r.lights, py::arg("made") = r.made,
+               py::arg("resolution") = r.resolution, py::arg("refit") = r.refit, py::arg("bake_ms") = r.bakeMs);
+    if (e & kDiffuse) d["diffuse"] = r.errors.diffuse;
+    if (e & kShadow) d["shadow"] = r.errors.shadow;
+    if (e & kGlossy) d["glossy"] = r.errors.glossy;
+    out.append(d);
+  }
+  return out;
+}
+
 // SH coefficients (bands^2 x 3) of the radiance, or of the irradiance.
 py::array_t<double> shProject(Pixels pixels, int bands, const std::string& projection,
                               const std::string& window, bool irradiance, const std::string& nonfinite) {
@@ -248,6 +283,11 @@ py::tuple shSample(Pixels pixels, int bands, double epsilon, int samples, int de
 PYBIND11_MODULE(_probelights, m) {
   m.doc() = "probelights: turn an HDR light probe into N lights that carry exactly its energy";
   py::register_exception<Error>(m, "Error", PyExc_ValueError);
+  m.def("tradeoff", &tradeoffRows, py::arg("pixels"), py::kw_only(), py::arg("projection") = "latlong",
+        py::arg("effects") = "diffuse,shadow", py::arg("counts") = std::vector<int>{4, 8, 16, 32, 64, 128, 256},
+        py::arg("methods") = std::vector<std::string>{"median-cut", "variance", "sh"}, py::arg("refit") = true,
+        py::arg("evaluator_width") = 2048, py::arg("nonfinite") = "error",
+        "What accuracy costs in time: one row per (method, count, refit) with bake_ms and each effect's error.");
   m.def("bake", &bakePixels, py::arg("pixels"), py::kw_only(), py::arg("projection") = "latlong",
         py::arg("method") = "variance", py::arg("lights") = 16, py::arg("centroid") = "energy",
         py::arg("resolution") = "auto", py::arg("horizon") = false, py::arg("bands") = 8,

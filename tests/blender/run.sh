@@ -11,7 +11,7 @@ profile=$(mktemp -d)
 trap 'rm -rf "$profile"' EXIT
 export BLENDER_USER_SCRIPTS=$profile/scripts BLENDER_USER_CONFIG=$profile/config
 if [[ -n $ui ]]; then
-  command=(xvfb-run -a -s "-screen 0 1280x900x24" "$blender" --factory-startup -noaudio --enable-event-simulate --python "$test")
+  command=(xvfb-run -a -s "-screen 0 1280x1500x24" "$blender" --factory-startup -noaudio --enable-event-simulate --python "$test")
 else
   command=("$blender" -b --factory-startup -noaudio --python-exit-code 1 --python "$test")
 fi

@@ -136,6 +136,21 @@ def test_estimated_errors_and_count_by_tolerance():
     assert len(refit) == 16
 
 
+def test_tradeoff_in_the_panel():
+    harness.empty_scene()
+    world = harness.env_world(bpy.data.images.load(os.path.join(ARGS.shared, "hdri", "noon_grass_1k.hdr")))
+    before = harness.tree_snapshot(world)
+    assert bpy.ops.probe_lights.tradeoff() == {"FINISHED"}
+    import json
+    table = json.loads(bpy.context.scene.probe_lights.tradeoff_rows)
+    plain = {r["lights"]: r["diffuse"] for r in table["rows"] if not r["refit"]}
+    assert sorted(plain) == [4, 8, 16, 32, 64, 128, 256] and plain[256] < plain[4]
+    assert harness.tree_snapshot(world) == before and not light_objects.baked_lights(bpy.context.scene)
+    assert bpy.ops.probe_lights.set_count(count=32) == {"FINISHED"}
+    assert bpy.context.scene.probe_lights.count == 32
+    print("  tradeoff: " + ", ".join("%d: %.2f %%" % (n, 100 * e) for n, e in sorted(plain.items())))
+
+
 def test_node_group_and_reroute():
     harness.empty_scene()
     world = bright_spot_world((100, 10))
@@ -317,7 +332,7 @@ def test_point_lights_give_the_same_irradiance_at_the_origin():
 
 harness.run([test_register_unregister, test_real_probes_bake_with_their_energy,
              test_strength_and_rotation_carry_into_the_lights, test_every_method_bakes,
-             test_estimated_errors_and_count_by_tolerance, test_node_group_and_reroute, test_mirror_ball_image,
+             test_estimated_errors_and_count_by_tolerance, test_tradeoff_in_the_panel, test_node_group_and_reroute, test_mirror_ball_image,
              test_sky_texture_world_is_rendered, test_read_and_rendered_worlds_agree,
              test_plain_colour_world_and_its_restore,
              test_rebake_replaces_only_its_own_lights, test_restore_brings_the_world_back_exactly,

@@ -60,6 +60,7 @@ def test_button_bake_then_undo():
 
 def test_panel_draws_in_world_properties():
     win = bpy.context.window_manager.windows[0]
+    bpy.ops.probe_lights.tradeoff()  # so the picture shows the accuracy-vs-time table too
     # The largest area (the 3D view) becomes a Properties editor on the World tab: wide enough to read the panel.
     area = max(win.screen.areas, key=lambda a: a.width * a.height)
     area.type = "PROPERTIES"

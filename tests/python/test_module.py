@@ -126,3 +126,15 @@ def test_sh_sample_and_sh_bake(bundled_probe):
     assert len(r["rgb"]) == 8 and np.allclose(r["rgb"].sum(0), r["total_rgb"], rtol=1e-12)
     with pytest.raises(pl.Error, match="epsilon"):
         pl.sh_sample(a, bands=4, epsilon=0.7)
+
+
+def test_tradeoff_rows(bundled_probe):
+    import numpy as np
+    a = np.zeros((64, 128, 3), np.float32) + 0.2
+    a[12, 40] = 3000.0
+    rows = pl.tradeoff(a, counts=[4, 16], methods=["variance"], evaluator_width=128)
+    assert [(r["lights"], r["refit"]) for r in rows] == [(4, False), (4, True), (16, False), (16, True)]
+    plain = {r["lights"]: r["diffuse"] for r in rows if not r["refit"]}
+    assert plain[16] < plain[4] and all(r["bake_ms"] > 0 and r["shadow"] >= 0 for r in rows)
+    with pytest.raises(pl.Error, match="light counts"):
+        pl.tradeoff(a, counts=[0])
