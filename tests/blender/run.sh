@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
 # Runs one Blender test file in a fresh user profile (the add-on is installed there from its zip): in background
-# mode, or with --ui as the first argument in a window on a virtual X display (for undo and panels).
-#   run.sh [--ui] BLENDER TEST.py ZIP SHARED_DIR [more test args]
+# mode; with --gl in background mode on a virtual X display (OpenGL for EEVEE); with --ui in a window on one
+# (for undo and panels).
+#   run.sh [--ui|--gl] BLENDER TEST.py ZIP SHARED_DIR [more test args]
 set -euo pipefail
-ui=
+ui= gl=
 if [[ $1 == --ui ]]; then ui=1; shift; fi
+if [[ $1 == --gl ]]; then gl=1; shift; fi
 blender=$1 test=$2 zip=$3 shared=$4
 shift 4
 profile=$(mktemp -d)
@@ -12,6 +14,9 @@ trap 'rm -rf "$profile"' EXIT
 export BLENDER_USER_SCRIPTS=$profile/scripts BLENDER_USER_CONFIG=$profile/config
 if [[ -n $ui ]]; then
   command=(xvfb-run -a -s "-screen 0 1280x1500x24" "$blender" --factory-startup -noaudio --enable-event-simulate --python "$test")
+elif [[ -n $gl ]]; then
+  command=(xvfb-run -a -s "-screen 0 800x600x24" "$blender" -b --factory-startup -noaudio --python-exit-code 1
+           --python "$test")
 else
   command=("$blender" -b --factory-startup -noaudio --python-exit-code 1 --python "$test")
 fi

@@ -1,0 +1,50 @@
+"""Never light a scene twice, in EEVEE too (rendered under Xvfb: EEVEE needs OpenGL). The sphere over a plane is
+rendered lit by the world (A), after a bake of 64 suns with the add-on's world mix (B), and with the same suns and
+the world's strength at 0 (C). The world must add nothing to the lit objects (B = C there), the camera must still
+see the probe (B = A in the background), and the suns must light the objects like the world did (B near A)."""
+
+import os
+import sys
+
+import bpy
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import harness  # noqa: E402
+import render_scene  # noqa: E402
+
+ARGS = harness.args()
+harness.install_addon(ARGS.zip)
+LUM = render_scene.LUM
+
+
+def test_world_mix_in_eevee():
+    harness.empty_scene()
+    world = harness.env_world(bpy.data.images.load(os.path.join(ARGS.shared, "hdri", "noon_grass_1k.hdr")))
+    render_scene.sphere_over_plane(160, 120, 16)
+    scene = bpy.context.scene
+    scene.render.engine = "BLENDER_EEVEE"
+    scene.render.film_transparent = False
+    scene.eevee.taa_render_samples = 16
+    a = render_scene.render()
+    assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=64) == {"FINISHED"}
+    b = render_scene.render()
+    mix = next(n for n in world.node_tree.nodes if n.bl_idname == "ShaderNodeMixShader")
+    original = mix.inputs[2].links[0].from_node
+    original.inputs["Strength"].default_value = 0.0  # the same suns, no world at all
+    c = render_scene.render()
+    ya, yb, yc = (x[..., :3] @ LUM for x in (a, b, c))
+    objects = yc > 1e-3       # lit by the suns alone: the sphere and the plane
+    background = yc <= 1e-6   # nothing there but the world
+    assert objects.mean() > 0.3 and background.mean() > 0.1, (objects.mean(), background.mean())
+    twice = float(np.abs(yb[objects] - yc[objects]).mean() / yc[objects].mean())
+    seen = float(np.abs(yb[background] - ya[background]).mean() / ya[background].mean())
+    like = float(np.abs(yb[objects] - ya[objects]).mean() / ya[objects].mean())
+    print("  EEVEE: world light added to the baked scene %.3f %%, background vs world-lit %.3f %%, baked vs world-lit "
+          "objects %.2f %%" % (100 * twice, 100 * seen, 100 * like))
+    assert twice < 0.005, twice  # the world lights nothing
+    assert seen < 0.005, seen    # but the camera still sees it
+    assert like < 0.15, like     # and the suns stand in for it (EEVEE's shadows and probes are approximate)
+
+
+harness.run([test_world_mix_in_eevee])
