@@ -9,6 +9,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <algorithm>
+#include <cstdio>
 #include <limits>
 
 #include "probelights/bake.h"
@@ -213,6 +215,49 @@ TEST(Files, AutoProjectionPicksLatLongFor2To1AndAsksOtherwise) {
   EXPECT_EQ(wide.projection().kind(), ProjectionKind::LatLong);
   EXPECT_NE(wide.report().notes.at(0).find("auto"), std::string::npos);
   fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace probelights
+
+namespace probelights {
+namespace {
+
+// The bundled sunny probe resampled into a mirror ball and an angular map (nearest lat-long pixel for each
+// direction): the same sun must come out in the same direction, and the same energy, up to the resampling.
+TEST(RealProbes, MirrorBallAndAngularResamplingsAgreeWithLatLong) {
+  Probe latlong = Probe::load(PROBELIGHTS_BUNDLED_PROBE);
+  BakeOptions o;
+  o.lights = 16;
+  auto reference = bake(latlong, o);
+  auto brightest = [](const BakeResult& r) {
+    return *std::max_element(r.lights.begin(), r.lights.end(),
+                             [](const Light& a, const Light& b) { return a.energyShare < b.energyShare; });
+  };
+  const Light sun = brightest(reference);
+  for (ProjectionKind kind : {ProjectionKind::MirrorBall, ProjectionKind::Angular}) {
+    const int S = 1024;
+    Projection target(kind, S, S);
+    std::vector<float> pixels(static_cast<std::size_t>(S) * S * 3, 0.0f);
+    for (int y = 0; y < S; ++y)
+      for (int x = 0; x < S; ++x) {
+        auto d = target.direction((x + 0.5) / S, (y + 0.5) / S);
+        if (!d) continue;
+        auto uv = latlong.projection().imagePosition(*d);
+        int sx = std::min(latlong.width() - 1, static_cast<int>(uv[0] * latlong.width()));
+        int sy = std::min(latlong.height() - 1, static_cast<int>(uv[1] * latlong.height()));
+        Rgb L = latlong.radiance(sx, sy);
+        for (int k = 0; k < 3; ++k) pixels[(static_cast<std::size_t>(y) * S + x) * 3 + k] = static_cast<float>(L[k]);
+      }
+    Probe resampled(ImageView{pixels.data(), S, S, 3}, kind);
+    auto r = bake(resampled, o);
+    EXPECT_EQ(r.lights.size(), 16u) << toString(kind);
+    // The sun (a few pixels, 64 % of the energy) lands in the same direction; its region is not the same as in the
+    // lat-long partition, so its mean direction moves by a few pixels (measured 0.95 and 0.90 degrees).
+    EXPECT_GT(dot(brightest(r).direction, sun.direction), std::cos(2.0 * kPi / 180)) << toString(kind);
+    // Total energy agrees to the resampling of a 1-2 pixel sun (nearest-pixel lookups).
+    EXPECT_LE(maxRelativeDifference(r.totalRgb, reference.totalRgb), 0.03) << toString(kind);
+  }
 }
 
 }  // namespace
