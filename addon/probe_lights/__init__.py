@@ -2,7 +2,7 @@
 
 Layout (glTF-Blender-IO style): rules that need no bpy (world_graph.py, conversion.py) apart from Blender glue
 (world_image.py, world_mix.py, light_objects.py, operators.py, properties.py, ui.py). The sampling itself is the
-native module _probelights, built into this package.
+native module _probelights, built into this package and imported on first use (native.py).
 """
 
 bl_info = {

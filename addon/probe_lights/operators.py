@@ -6,11 +6,12 @@ import time
 import bpy
 import numpy as np
 
-from . import _probelights
+from . import native
 from .light_objects import make_lights, remove_lights
 from .properties import SETTING_NAMES, bake_settings
 from .world_graph import find_probe
-from .world_image import ProbeError, image_pixels, render_world
+from .errors import ProbeError
+from .world_image import image_pixels, render_world
 from .world_mix import insert_mix, remove_mix
 
 RENDER_WIDTH = 1024  # lat-long width a world without a readable image is rendered at
@@ -32,7 +33,7 @@ def world_probe(world):
     if world is None:
         raise ProbeError("the scene has no world: add one in World properties")
     try:
-        source = find_probe(world)
+        source = find_probe(world, bpy.app.version)
     except ValueError as e:
         raise ProbeError(str(e))
     if source.image is not None:
@@ -53,7 +54,7 @@ def bake_world(context, settings):
         wm.progress_update(50)
         # The errors are estimated on the probe grouped to 512 pixels wide: ~50 ms at any probe size.
         max_error = settings.max_error / 100.0 if settings.count_mode == "TOLERANCE" else 0.0
-        baked = _probelights.bake(pixels, projection=projection, method=settings.method, lights=settings.count,
+        baked = native.bake(pixels, projection=projection, method=settings.method, lights=settings.count,
                                   resolution=settings.resolution, evaluate=True, effects="diffuse,shadow",
                                   evaluator_width=512, refit=settings.refit, move_directions=settings.refit,
                                   max_error=max_error)
@@ -99,7 +100,7 @@ class PROBE_LIGHTS_OT_bake(bpy.types.Operator):
     def execute(self, context):
         try:
             summary = bake_world(context, self)
-        except (ProbeError, _probelights.Error) as e:
+        except ProbeError as e:
             self.report({"ERROR"}, str(e))
             return {"CANCELLED"}
         settings = context.scene.probe_lights
@@ -132,10 +133,10 @@ class PROBE_LIGHTS_OT_tradeoff(bpy.types.Operator):
         settings = context.scene.probe_lights
         try:
             pixels, projection, described, _ = world_probe(context.scene.world)
-            rows = _probelights.tradeoff(pixels, projection=projection, effects="diffuse,shadow",
+            rows = native.tradeoff(pixels, projection=projection, effects="diffuse,shadow",
                                          counts=TRADEOFF_COUNTS, methods=[settings.method], refit=True,
                                          evaluator_width=512)
-        except (ProbeError, _probelights.Error) as e:
+        except ProbeError as e:
             self.report({"ERROR"}, str(e))
             return {"CANCELLED"}
         settings.tradeoff_rows = json.dumps({"method": settings.method, "source": described, "rows": rows})

@@ -4,11 +4,15 @@ import json
 
 import bpy
 
+from . import native
 from .world_mix import has_mix
 
 
 def draw_panel(layout, context):
     settings = context.scene.probe_lights
+    problem = native.unavailable()
+    if problem:
+        layout.label(text=problem, icon="ERROR")
     col = layout.column(align=True)
     col.prop(settings, "method")
     row = col.row(align=True)

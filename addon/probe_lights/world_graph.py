@@ -174,18 +174,27 @@ def _constant(socket, what):
         return float(v)
 
 
-def find_probe(world):
-    """Where the world's light comes from: a ProbeSource (image set, or render_reason set)."""
+def find_probe(world, blender_version=(4, 5, 0)):
+    """Where the world's light comes from: a ProbeSource (image set, or render_reason set). blender_version:
+    bpy.app.version of the Blender the world is in (what it renders differs between versions)."""
     try:
-        return _find(world)
+        return _find(world, blender_version)
     except _Render as why:
         return ProbeSource(render_reason=str(why))
 
 
-def _find(world):
+def uses_nodes(world, blender_version):
+    """Whether Blender renders the world through its node tree. From 5.0 on it always does (World.use_nodes is
+    deprecated, and measured: Cycles 5.0 renders a world with use_nodes False through its Background node)."""
+    if tuple(blender_version) >= (5, 0, 0):
+        return world.node_tree is not None
+    return bool(world.use_nodes) and world.node_tree is not None
+
+
+def _find(world, blender_version):
     if world is None:
         raise ValueError("the scene has no world")
-    if not world.use_nodes or world.node_tree is None:
+    if not uses_nodes(world, blender_version):
         raise _Render("the world uses a plain colour, not nodes")
     outputs = [n for n in world.node_tree.nodes if n.bl_idname == "ShaderNodeOutputWorld"]
     active = [n for n in outputs if n.is_active_output] or outputs

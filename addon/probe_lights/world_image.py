@@ -8,12 +8,9 @@ import bpy
 import numpy as np
 
 from .conversion import srgb_to_linear
+from .errors import ProbeError
 
 LINEAR_SPACES = {"Linear", "Linear Rec.709", "Non-Color", "Raw", "Linear CIE-XYZ E"}
-
-
-class ProbeError(Exception):
-    """A problem the user can fix, said in one line."""
 
 
 def image_pixels(image):

@@ -12,7 +12,9 @@ In EEVEE (Legacy) the world lights diffuse and reflections through one probe, re
 only reflections from the world is a Cycles feature; EEVEE then gets no world lighting at all (lights only).
 """
 
-from .world_graph import MIX_TAG
+import bpy
+
+from .world_graph import MIX_TAG, uses_nodes
 
 NODE_TAG = "probe_lights"
 ENABLED_NODES_TAG = "probe_lights_enabled_nodes"
@@ -35,8 +37,9 @@ def _active_output(tree):
 def insert_mix(world, keep_background=True, keep_reflections=True, keep_diffuse=False):
     """Routes the world's surface through the mix; replaces an earlier mix of ours."""
     remove_mix(world)
-    if not world.use_nodes:
-        # A plain-colour world: give it the node tree Blender would, remembering to switch it back on restore.
+    if not uses_nodes(world, bpy.app.version):
+        # A plain-colour world (before Blender 5.0): give it the node tree Blender would, remembering to switch it
+        # back on restore.
         colour = tuple(world.color) + (1.0,)
         world.use_nodes = True
         world[ENABLED_NODES_TAG] = 1

@@ -1,6 +1,8 @@
 // _probelights: the thin Python shell over the core (see ../../README.md, "From Python").
-// One function per core entry point; the GIL is released around every long call; core errors become
-// probelights.Error (a ValueError) with the core's one-line message.
+// Built twice (native/CMakeLists.txt): the full module also reads files (bake_file, PROBELIGHTS_MODULE_IO=1);
+// the add-on's portable build takes pixels only and links no OpenImageIO. One function per core entry point;
+// the GIL is released around every long call; core errors become probelights.Error (a ValueError) with the
+// core's one-line message.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -176,6 +178,7 @@ py::dict bakePixels(Pixels pixels, const std::string& projection, const std::str
   return d;
 }
 
+#if PROBELIGHTS_MODULE_IO
 py::dict bakeFile(const std::string& path, const std::string& projection, const std::string& method,
                   int lights, const std::string& centroid, const std::string& resolution, bool horizon,
                   int bands, double epsilon, const std::string& nonfinite) {
@@ -195,6 +198,7 @@ py::dict bakeFile(const std::string& path, const std::string& projection, const 
   d["path"] = path;
   return d;
 }
+#endif
 
 // The tradeoff grid (tradeoff.h) as a list of dicts: method, lights, made, resolution, refit, bake_ms, and the errors.
 py::list tradeoffRows(Pixels pixels, const std::string& projection, const std::string& effects,
@@ -300,11 +304,13 @@ PYBIND11_MODULE(_probelights, m) {
         "total_rgb (3,), "
         "and metadata (notes, timings_ms, cell_size, ...). evaluate/refit/max_error add 'errors' on "
         "`effects`.");
+#if PROBELIGHTS_MODULE_IO
   m.def("bake_file", &bakeFile, py::arg("path"), py::kw_only(), py::arg("projection") = "auto",
         py::arg("method") = "variance", py::arg("lights") = 16, py::arg("centroid") = "energy",
         py::arg("resolution") = "auto", py::arg("horizon") = false, py::arg("bands") = 8,
         py::arg("epsilon") = 0.01, py::arg("nonfinite") = "error",
         "Read a probe with OpenImageIO and bake it; the same dict as bake(), plus 'path'.");
+#endif
   m.def(
       "sh_project", &shProject, py::arg("pixels"), py::kw_only(), py::arg("bands"),
       py::arg("projection") = "latlong", py::arg("window") = "none", py::arg("irradiance") = false,
@@ -315,5 +321,8 @@ PYBIND11_MODULE(_probelights, m) {
       py::arg("samples") = 1024, py::arg("depth") = 8, py::arg("seed") = 1, py::arg("projection") = "latlong",
       py::arg("nonfinite") = "error",
       "(directions (N,3), pdf (N,)) from the SH importance sampler of the probe's luminance (Berger 2011).");
-  m.attr("__version__") = "0.1.0";
+  m.attr("__version__") = PROBELIGHTS_VERSION;
+  // "full": reads files with OpenImageIO (bake_file); "pixels": the portable build inside the Blender add-on,
+  // which links nothing but the C library and takes pixels only.
+  m.attr("build") = PROBELIGHTS_MODULE_IO ? "full" : "pixels";
 }

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "probelights/error.h"
+#include "probelights/probe.h"
 
 namespace probelights {
 
@@ -43,6 +44,10 @@ Image readImage(const std::string& path) {
     throw Error("cannot read probe '" + path + "': " + (why.empty() ? "read failed" : why));
   }
   return image;
+}
+
+Probe Probe::load(const std::string& path, const ProbeOptions& options) {
+  return Probe(readImage(path), options.projection, options.nonFinite, path);
 }
 
 }  // namespace probelights

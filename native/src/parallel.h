@@ -1,19 +1,49 @@
-// Parallel loops over OpenImageIO's thread pool.
+// Parallel loops: OpenImageIO's thread pool where the library links OpenImageIO (CLI, tests, the full Python
+// module), or a few std::threads in the portable build that the Blender add-on loads (it must link nothing but
+// libc: see native/CMakeLists.txt). Every caller computes item i from i alone, so results are bit-identical
+// whichever backend runs and however many threads it has.
 #pragma once
-
-#include <OpenImageIO/parallel.h>
 
 #include <cstdint>
 
+#if PROBELIGHTS_PARALLEL_OIIO
+#include <OpenImageIO/parallel.h>
+#else
+#include <algorithm>
+#include <atomic>
+#include <thread>
+#include <vector>
+#endif
+
 namespace probelights {
 
-// Runs task(i) for i in [0, n) on the pool. OpenImageIO's parallel_for keeps ranges of fewer than 1024 items
-// on one thread by default (paropt's minitems); our items (rows of cells, regions) are each large, so allow
-// one per task.
+// Runs task(i) for i in [0, n).
 template <class Task>
 void parallelFor(std::int64_t n, Task&& task) {
+#if PROBELIGHTS_PARALLEL_OIIO
+  // OpenImageIO's parallel_for keeps ranges of fewer than 1024 items on one thread by default (paropt's
+  // minitems); our items (rows of cells, regions) are each large, so allow one per task.
   OIIO::parallel_for(std::int64_t{0}, n, OIIO::function_view<void(std::int64_t)>(task),
                      OIIO::paropt(0, OIIO::paropt::SplitDir::Y, 1));
+#else
+  // Threads take the next item from a shared counter (items differ in cost). A thread costs ~20 us to start,
+  // small beside the passes over an image this runs; tiny loops stay on the caller's thread.
+  const auto hardware = static_cast<std::int64_t>(std::max(1u, std::thread::hardware_concurrency()));
+  const std::int64_t threads = std::min(hardware, n);
+  if (threads <= 1) {
+    for (std::int64_t i = 0; i < n; ++i) task(i);
+    return;
+  }
+  std::atomic<std::int64_t> next{0};
+  auto work = [&] {
+    for (std::int64_t i; (i = next.fetch_add(1, std::memory_order_relaxed)) < n;) task(i);
+  };
+  std::vector<std::thread> pool;
+  pool.reserve(static_cast<std::size_t>(threads - 1));
+  for (std::int64_t t = 1; t < threads; ++t) pool.emplace_back(work);
+  work();
+  for (auto& thread : pool) thread.join();
+#endif
 }
 
 }  // namespace probelights

@@ -73,10 +73,6 @@ Probe::Probe(Image image, ProjectionChoice projection, NonFinitePolicy nonFinite
   }
 }
 
-Probe Probe::load(const std::string& path, const ProbeOptions& options) {
-  return Probe(readImage(path), options.projection, options.nonFinite, path);
-}
-
 void Probe::validate(NonFinitePolicy nonFinite) {
   const int colourChannels = view_.channels < 3 ? 1 : 3;
   struct RowCount {

@@ -1,12 +1,13 @@
 """Shared by the Blender background tests: install the add-on from its zip into a fresh profile (as a new user
 would), build test worlds, and a tiny runner that prints one line per test and 'N passed, N failed'.
 
-Run a test file alone:
-  BLENDER_USER_SCRIPTS=$(mktemp -d) blender -b --factory-startup -noaudio --python-exit-code 1 \
-      --python tests/blender/test_addon.py -- --zip build/probe_lights.zip --shared ../shared
+Run a test file alone, in Debian's Blender or in a bpy module's Python (scripts/bpy-env.sh makes one):
+  tests/blender/run.sh blender tests/blender/test_addon.py build/probe_lights.zip ../shared
+  tests/blender/run.sh ~/.cache/probelights/bpy-4.5.15/bin/python tests/blender/test_addon.py build/probe_lights.zip ../shared
 """
 
 import argparse
+import importlib
 import math
 import os
 import sys
@@ -28,14 +29,40 @@ def args():
     return p.parse_args(argv)
 
 
+ADDON = "probe_lights"  # the add-on's module name once installed (install_addon sets it)
+
+
 def install_addon(zip_path):
-    """Installs and enables the add-on from its zip; returns the module."""
+    """Installs and enables the add-on from its zip as a user would, in a fresh profile: Blender 4.2+ through the
+    extension system's Install from Disk (into the user_default repository), older Blenders as a legacy add-on.
+    Returns the add-on's module."""
+    global ADDON
     if not os.environ.get("BLENDER_USER_SCRIPTS"):
         raise SystemExit("set BLENDER_USER_SCRIPTS to a fresh folder: the tests install the add-on there")
-    bpy.ops.preferences.addon_install(filepath=os.path.abspath(zip_path), overwrite=True)
-    bpy.ops.preferences.addon_enable(module="probe_lights")
-    import probe_lights
-    return probe_lights
+    path = os.path.abspath(zip_path)
+    if bpy.app.version >= (4, 2, 0):
+        result = bpy.ops.extensions.package_install_files(filepath=path, repo="user_default",
+                                                          enable_on_install=True)
+        assert result == {"FINISHED"}, result
+        ADDON = "bl_ext.user_default.probe_lights"
+    else:
+        bpy.ops.preferences.addon_install(filepath=path, overwrite=True)
+        bpy.ops.preferences.addon_enable(module="probe_lights")
+        ADDON = "probe_lights"
+    assert ADDON in bpy.context.preferences.addons, "the add-on is not enabled: %s" % ADDON
+    print("installed %s in Blender %s (Python %d.%d)" % (ADDON, bpy.app.version_string, *sys.version_info[:2]),
+          flush=True)
+    return importlib.import_module(ADDON)
+
+
+def addon_module(name):
+    """One of the add-on's modules (e.g. 'light_objects'), wherever the install put the package."""
+    return importlib.import_module(ADDON + "." + name)
+
+
+def native():
+    """The add-on's own _probelights (the portable build it carries)."""
+    return addon_module("native").module()
 
 
 def empty_scene():
@@ -60,7 +87,7 @@ def env_world(image, projection="EQUIRECTANGULAR", strength=1.0, rotation=None, 
     """World: [Texture Coordinate -> Mapping(rotation) ->] Environment Texture -> Background -> Output."""
     world = bpy.data.worlds.new(name)
     bpy.context.scene.world = world
-    world.use_nodes = True
+    use_nodes(world)
     nt = world.node_tree
     bg = nt.nodes["Background"]
     bg.inputs["Strength"].default_value = strength
@@ -75,6 +102,18 @@ def env_world(image, projection="EQUIRECTANGULAR", strength=1.0, rotation=None, 
         nt.links.new(coords.outputs["Generated"], mapping.inputs["Vector"])
         nt.links.new(mapping.outputs["Vector"], env.inputs["Vector"])
     return world
+
+
+def use_nodes(world):
+    """Blender before 5.0 renders a world's nodes only when asked; 5.0 always does (World.use_nodes deprecated)."""
+    if bpy.app.version < (5, 0, 0):
+        world.use_nodes = True
+
+
+def sky_type(sky, physical=True):
+    """Sky Texture types by version: 5.0 split Nishita into single and multiple scattering."""
+    names = [item.identifier for item in sky.bl_rna.properties["sky_type"].enum_items]
+    sky.sky_type = "NISHITA" if "NISHITA" in names else "MULTIPLE_SCATTERING" if physical else "PREETHAM"
 
 
 def float_image(name, pixels_top_down):
@@ -106,7 +145,7 @@ def tree_snapshot(world):
         nodes[n.name] = (n.bl_idname, tuple(round(c, 3) for c in n.location), tuple(values))
     links = sorted((l.from_node.name, l.from_socket.identifier, l.to_node.name, l.to_socket.identifier)
                    for l in nt.links)
-    return world.use_nodes, nodes, links
+    return (world.use_nodes if bpy.app.version < (5, 0, 0) else True), nodes, links
 
 
 def angle_deg(a, b):

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Runs one Blender test file in a fresh user profile (the add-on is installed there from its zip): in background
-# mode; with --gl in background mode on a virtual X display (OpenGL for EEVEE); with --ui in a window on one
-# (for undo and panels).
+# Runs one Blender test file in a fresh user profile (the add-on is installed there from its zip) with either
+# Debian's Blender (BLENDER is an executable named blender*) or Blender as a Python module (BLENDER is the python
+# of a virtual environment holding bpy, scripts/bpy-env.sh). Blender runs in background mode; with --gl on a
+# virtual X display (OpenGL for EEVEE); with --ui in a window on one (for undo and panels; Debian's Blender only).
 #   run.sh [--ui|--gl] BLENDER TEST.py ZIP SHARED_DIR [more test args]
 set -euo pipefail
 ui= gl=
@@ -12,7 +13,11 @@ shift 4
 profile=$(mktemp -d)
 trap 'rm -rf "$profile"' EXIT
 export BLENDER_USER_SCRIPTS=$profile/scripts BLENDER_USER_CONFIG=$profile/config
-if [[ -n $ui ]]; then
+export BLENDER_USER_EXTENSIONS=$profile/extensions BLENDER_USER_DATAFILES=$profile/datafiles
+if [[ $(basename "$blender") == python* ]]; then
+  command=("$blender" "$test")
+  [[ -n $gl ]] && command=(xvfb-run -a -s "-screen 0 800x600x24" "${command[@]}")
+elif [[ -n $ui ]]; then
   command=(xvfb-run -a -s "-screen 0 1280x1500x24" "$blender" --factory-startup -noaudio --enable-event-simulate --python "$test")
 elif [[ -n $gl ]]; then
   command=(xvfb-run -a -s "-screen 0 800x600x24" "$blender" -b --factory-startup -noaudio --python-exit-code 1

@@ -3,9 +3,9 @@ import sys
 
 import pytest
 
-# The module lives in the add-on package the build assembles; import it directly (the package needs bpy).
+# The full module (reads files too) is built into build/python; the add-on carries portable builds of it.
 BUILD = os.environ.get("PROBELIGHTS_BUILD", os.path.join(os.path.dirname(__file__), "..", "..", "build"))
-sys.path.insert(0, os.path.join(BUILD, "addon", "probe_lights"))
+sys.path.insert(0, os.path.join(BUILD, "python"))
 # The add-on's bpy-free rules (world_graph, conversion) are imported as plain modules too.
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "addon", "probe_lights"))
 

@@ -214,3 +214,13 @@ def test_point_power_gives_the_irradiance_at_the_origin():
 def test_srgb_to_linear():
     assert np.allclose(conversion.srgb_to_linear([0.0, 0.04045, 0.5, 1.0]), [0.0, 0.04045 / 12.92, 0.2140, 1.0],
                        atol=1e-4)
+
+
+
+def test_blender_5_renders_every_world_through_its_nodes():
+    """World.use_nodes is deprecated in 5.0 and ignored (measured: Cycles 5.0 renders the Background node of a world
+    whose use_nodes is False), so from 5.0 on the tree is read whatever the flag says."""
+    out, bg = output_and_background()
+    world = World(Tree(out, bg), use_nodes=False)
+    assert "plain colour, not nodes" in wg.find_probe(world, (4, 5, 0)).render_reason
+    assert wg.find_probe(world, (5, 0, 0)).render_reason == "the background is a plain colour"

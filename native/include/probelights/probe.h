@@ -38,7 +38,7 @@ class Probe {
   // Owns an image (what load() reads).
   Probe(Image image, ProjectionChoice projection, NonFinitePolicy nonFinite, const std::string& sourceName);
 
-  static Probe load(const std::string& path, const ProbeOptions& options = {});
+  static Probe load(const std::string& path, const ProbeOptions& options = {});  // in probelights_io
 
   int width() const { return view_.width; }
   int height() const { return view_.height; }

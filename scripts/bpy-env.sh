@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Creates (once) and prints the path of a virtual environment holding one pinned Blender-as-a-module (bpy) from PyPI.
+#   scripts/bpy-env.sh 4.5.15      -> prints ~/.cache/probelights/bpy-4.5.15 (its bin/python runs that Blender)
+# Each bpy wheel is built for one CPython: 4.x and 5.0 for 3.11, 5.1+ for 3.13. The environments live outside the
+# repository (PROBELIGHTS_CACHE, default ~/.cache/probelights) so a second run downloads nothing.
+set -euo pipefail
+version=$1
+case "$version" in
+  4.*|5.0.*) py=3.11 ;;
+  *)         py=3.13 ;;
+esac
+cache=${PROBELIGHTS_CACHE:-$HOME/.cache/probelights}
+env=$cache/bpy-$version
+if [[ -x $env/bin/python && -f $env/.complete ]]; then echo "$env"; exit 0; fi
+
+# A CPython of the right minor version: pyenv's, then the system's.
+python=""
+for candidate in "${PYENV_ROOT:-$HOME/.pyenv}"/versions/$py.*/bin/python$py /usr/bin/python$py /usr/local/bin/python$py; do
+  [[ -x $candidate ]] && { python=$candidate; break; }
+done
+[[ -n $python ]] || { echo "bpy $version needs CPython $py, which is not installed" >&2; exit 3; }
+
+rm -rf "$env"; mkdir -p "$cache"
+"$python" -m venv "$env" >&2
+"$env/bin/python" -m pip install -q --disable-pip-version-check "bpy==$version" >&2
+"$env/bin/python" -c "import bpy; print('bpy', bpy.app.version_string, file=__import__('sys').stderr)"
+touch "$env/.complete"
+echo "$env"
