@@ -1,12 +1,16 @@
 """From baked lights to Blender light parameters: units and orientations, no bpy.
 
-Units (measured with Cycles 3.4 renders of a white diffuse plane, tests/blender/test_render.py):
+Units, measured per Blender version by Cycles renders of a white diffuse patch (tests/blender/test_render.py
+derives them from the renders and checks these models; README "Light units per version"):
   - a sun lamp of strength S and angle 0 gives irradiance S (W/m^2) on a surface facing it, so a light's rgb (the
     sum of L dOmega over its region: the irradiance it gives a facing surface) is sun colour x strength;
-  - a sun of angle 2a gives less: Cycles samples a disc of radius tan(a) at unit distance with pdf invarea/cos^3,
-    so a facing surface receives S x 2 cos(a) / (1 + cos(a)) (measured: 0.983 at 30 degrees, 0.829 at 90, 0.667 at
-    120); the strength is divided by that factor so the irradiance stays the region's;
-  - a point lamp of power P (W) at distance D gives irradiance P / (4 pi D^2), so P = 4 pi D^2 x E.
+  - a sun of angle 2a: Blender 3.4's Cycles samples a disc of radius tan(a) at unit distance with pdf
+    invarea/cos^3, so a facing surface receives S x 2 cos(a) / (1 + cos(a)) (measured: 0.983 at 30 degrees, 0.828
+    at 90, 0.667 at 120); the strength is divided by that factor so the irradiance stays the region's. Blender 4.5,
+    5.0 and 5.2 normalize the cone: a facing surface receives S at every angle (measured 1.0000 from 0 to 179
+    degrees). Versions 3.5 to 4.4 are not measured; they are taken to behave like 4.5 from 4.0 on.
+  - a point lamp of power P (W) at distance D gives irradiance P / (4 pi D^2), so P = 4 pi D^2 x E (measured
+    0.9999 in 3.4, 4.5, 5.0, 5.2).
 """
 
 import math
@@ -39,8 +43,14 @@ def colour_and_scale(rgb):
 MAX_SUN_ANGLE = math.radians(180.0)
 
 
-def sun_normal_irradiance(angle):
-    """Irradiance a Cycles sun of strength 1 and the given angle (radians, full) gives a surface facing it."""
+NORMALIZED_SUN_SINCE = (4, 0, 0)  # measured: 3.4 disc; 4.5, 5.0, 5.2 normalized (3.5 to 4.4 not measured)
+
+
+def sun_normal_irradiance(angle, blender_version):
+    """Irradiance a Cycles sun of strength 1 and the given angle (radians, full) gives a surface facing it, in the
+    Blender of that version (bpy.app.version)."""
+    if tuple(blender_version) >= NORMALIZED_SUN_SINCE:
+        return 1.0
     c = math.cos(0.5 * angle)
     return 2.0 * c / (1.0 + c) if c > 0 else 0.0
 
@@ -55,10 +65,11 @@ def sun_angle(angular_radius):
     return min(float(angular_radius), MAX_SUN_ANGLE)
 
 
-def sun_parameters(direction, rgb, angular_radius, soft_shadows=True):
+def sun_parameters(direction, rgb, angular_radius, blender_version, soft_shadows=True):
+    """Rotation, colour, strength and angle of a sun lamp that gives a facing surface `rgb` in that Blender."""
     colour, irradiance = colour_and_scale(rgb)
     angle = sun_angle(angular_radius) if soft_shadows else 0.0
-    factor = sun_normal_irradiance(angle)
+    factor = sun_normal_irradiance(angle, blender_version)
     return {"rotation": rotation_to_direction(direction), "color": colour,
             "energy": irradiance / factor if factor > 0 else 0.0, "angle": angle}
 

@@ -54,7 +54,7 @@ def make_lights(scene, baked, world_from_probe, strength, light_type="SUN", soft
     for i in range(len(directions)):
         name = "Probe Light %03d" % i
         if light_type == "SUN":
-            p = sun_parameters(directions[i], rgb[i], baked["angular_radius"][i], soft_shadows)
+            p = sun_parameters(directions[i], rgb[i], baked["angular_radius"][i], bpy.app.version, soft_shadows)
             data = bpy.data.lights.new(name, "SUN")
             data.angle = p["angle"]
         else:

@@ -14,7 +14,8 @@ BLOCK = 8
 
 def diffuse_material(albedo=0.8):
     mat = bpy.data.materials.new("diffuse")
-    mat.use_nodes = True
+    if bpy.app.version < (5, 0, 0):  # 5.0 always uses a material's nodes (Material.use_nodes deprecated)
+        mat.use_nodes = True
     nt = mat.node_tree
     nt.nodes.remove(nt.nodes["Principled BSDF"])
     d = nt.nodes.new("ShaderNodeBsdfDiffuse")

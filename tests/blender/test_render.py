@@ -68,12 +68,17 @@ def test_baked_lights_render_like_the_world():
     assert worst < BOUND_64, "64 lights differ from the world by %.2f %% (bound %.0f %%)" % (100 * worst, 100 * BOUND_64)
 
 
+SUN_ANGLES = (0, 10, 30, 90, 120)  # degrees, full angle
+
+
 def test_light_units_in_cycles():
-    """A sun of strength S gives irradiance S; a point light of power P at distance D gives P / (4 pi D^2)."""
+    """Measures, in the running Blender, the irradiance a facing white patch gets from a sun of strength 1 at each
+    angle and from a point lamp, and checks the add-on's model of that version (conversion.py) against it."""
     harness.empty_scene()
     scene = bpy.context.scene
     scene.world = bpy.data.worlds.new("black")
-    scene.world.color = (0, 0, 0)
+    harness.use_nodes(scene.world)
+    scene.world.node_tree.nodes["Background"].inputs["Strength"].default_value = 0.0  # 5.0 ignores World.color
     bpy.ops.mesh.primitive_plane_add(size=2)
     bpy.context.active_object.data.materials.append(diffuse_material(1.0))
     cam = bpy.data.objects.new("cam", bpy.data.cameras.new("cam"))
@@ -88,7 +93,7 @@ def test_light_units_in_cycles():
     scene.cycles.samples = 64
     scene.cycles.use_denoising = False
 
-    def radiance():
+    def irradiance():
         fd, path = tempfile.mkstemp(suffix=".exr")
         os.close(fd)
         r.filepath = path
@@ -97,24 +102,36 @@ def test_light_units_in_cycles():
         value = float(np.array(img.pixels[:]).reshape(8, 8, 4)[..., 0].mean())
         bpy.data.images.remove(img)
         os.remove(path)
-        return value
+        return value * math.pi  # white diffuse: radiance = E / pi
 
+    conversion = harness.addon_module("conversion")
     sun = bpy.data.objects.new("sun", bpy.data.lights.new("sun", "SUN"))
-    sun.data.energy, sun.data.angle = 2.0, 0.0
+    sun.data.energy = 1.0
     scene.collection.objects.link(sun)
-    assert abs(radiance() * math.pi / 2.0 - 1) < 1e-3  # white diffuse: radiance = E / pi
-    from probe_lights.conversion import sun_parameters
-    for radius in (0.3, 0.8, 1.2):  # a wide sun's strength is raised so a facing surface still gets E
-        p = sun_parameters((0, 0, 1), (2.0, 2.0, 2.0), radius)
-        sun.data.energy, sun.data.angle = p["energy"], p["angle"]
-        assert abs(radiance() * math.pi / 2.0 - 1) < 3e-3, (radius, radiance() * math.pi)
+    measured = {}
+    for degrees in SUN_ANGLES:
+        sun.data.angle = math.radians(degrees)
+        measured[degrees] = irradiance()
     bpy.data.objects.remove(sun)
     point = bpy.data.objects.new("point", bpy.data.lights.new("point", "POINT"))
     point.data.energy, point.data.shadow_soft_size = 1000.0, 0.0
     point.location = (0, 0, 10)
     scene.collection.objects.link(point)
-    E = radiance() * math.pi
-    assert abs(E / (1000.0 / (4 * math.pi * 100.0)) - 1) < 1e-2, E
+    point_factor = irradiance() / (1000.0 / (4 * math.pi * 100.0))
+    print("  Blender %s: sun of strength 1 on a facing patch: %s; point lamp P/(4 pi D^2) x %.4f" % (
+        bpy.app.version_string, ", ".join("%d deg %.4f" % kv for kv in measured.items()), point_factor))
+    for degrees, value in measured.items():
+        model = conversion.sun_normal_irradiance(math.radians(degrees), bpy.app.version)
+        assert abs(value / model - 1) < 3e-3, (degrees, value, model)
+    assert abs(point_factor - 1) < 1e-2, point_factor
+    bpy.data.objects.remove(point)
+    # And what the add-on makes of it: a baked sun of any width gives a facing surface the region's irradiance.
+    p = conversion.sun_parameters((0, 0, 1), (2.0, 2.0, 2.0), math.radians(60), bpy.app.version)
+    sun = bpy.data.objects.new("sun", bpy.data.lights.new("sun", "SUN"))
+    sun.data.energy, sun.data.angle = p["energy"], p["angle"]
+    scene.collection.objects.link(sun)
+    baked = irradiance()
+    assert abs(baked / 2.0 - 1) < 3e-3, baked
 
 
 harness.run([test_light_units_in_cycles, test_baked_lights_render_like_the_world])
