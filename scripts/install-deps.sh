@@ -3,10 +3,11 @@
 #   scripts/install-deps.sh          build + run (CLI, library, Python module)
 #   scripts/install-deps.sh --test   also what the tests need (GoogleTest, pytest, Blender, Xvfb)
 set -euo pipefail
-packages=(cmake g++ make pkg-config libopenimageio-dev openimageio-tools nlohmann-json3-dev pybind11-dev python3-dev python3-numpy
+packages=(cmake g++ make pkg-config libopenimageio-dev openimageio-tools nlohmann-json3-dev python3-dev python3-numpy python3-pip
+          python3-venv
           libbenchmark-dev fonts-dejavu-core)
 if [[ "${1:-}" == "--test" ]]; then
-  packages+=(libgtest-dev googletest python3-pytest blender xvfb xauth)
+  packages+=(libgtest-dev googletest python3-pytest blender xvfb xauth libegl1 libgl1-mesa-dri)
 fi
 missing=()
 for p in "${packages[@]}"; do

@@ -3,6 +3,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh --test
+# Blender as a Python module, each pinned version in a cached virtual environment (downloads only the first time).
+grep -E '^[0-9]' tests/blender/bpy-versions | while read -r version; do scripts/bpy-env.sh "$version" >/dev/null; done
 scripts/build.sh
 cd build
 ctest --output-on-failure -j"$(nproc)"

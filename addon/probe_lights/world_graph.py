@@ -196,7 +196,9 @@ def _find(world, blender_version):
         raise ValueError("the scene has no world")
     if not uses_nodes(world, blender_version):
         raise _Render("the world uses a plain colour, not nodes")
-    outputs = [n for n in world.node_tree.nodes if n.bl_idname == "ShaderNodeOutputWorld"]
+    # The output Cycles renders: an EEVEE-only output (the add-on's own among them, world_mix.py) is not it.
+    outputs = [n for n in world.node_tree.nodes
+               if n.bl_idname == "ShaderNodeOutputWorld" and getattr(n, "target", "ALL") != "EEVEE"]
     active = [n for n in outputs if n.is_active_output] or outputs
     if not active:
         raise _Render("the world has no World Output")

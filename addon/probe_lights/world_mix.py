@@ -8,8 +8,11 @@ user keeps from it (camera background, reflections, diffuse), and a restore that
 
 Every node it adds carries the custom property "probe_lights"; the mix also carries world_graph.MIX_TAG. Nothing
 else in the tree is touched, so removing the tagged nodes and linking the original surface back restores it.
-In EEVEE (Legacy) the world lights diffuse and reflections through one probe, rendered as a non-camera ray: keeping
-only reflections from the world is a Cycles feature; EEVEE then gets no world lighting at all (lights only).
+EEVEE lights diffuse and reflections from one world probe, so it cannot keep only the world's reflections. EEVEE
+Legacy (3.x) captures that probe as a non-camera, non-glossy ray, so the mix above gives it no world light. EEVEE
+Next (4.2+) captures it as a glossy ray (measured: a world kept for glossy rays lit the objects at 99.9 %, i.e. the
+scene twice). So when the world keeps reflections but not diffuse light, EEVEE gets a World Output of its own
+(target EEVEE) that shows the world to the camera only: in EEVEE the lamps then light everything, once.
 """
 
 import bpy
@@ -18,6 +21,7 @@ from .world_graph import MIX_TAG, uses_nodes
 
 NODE_TAG = "probe_lights"
 ENABLED_NODES_TAG = "probe_lights_enabled_nodes"
+EEVEE_OUTPUT_TAG = "probe_lights_eevee_output"
 
 
 def _tagged(tree):
@@ -29,7 +33,8 @@ def has_mix(world):
 
 
 def _active_output(tree):
-    outputs = [n for n in tree.nodes if n.bl_idname == "ShaderNodeOutputWorld"]
+    """The World Output Cycles renders (never the EEVEE-only one this module adds)."""
+    outputs = [n for n in tree.nodes if n.bl_idname == "ShaderNodeOutputWorld" and not n.get(EEVEE_OUTPUT_TAG)]
     active = [n for n in outputs if n.is_active_output] or outputs
     return active[0] if active else None
 
@@ -86,7 +91,30 @@ def insert_mix(world, keep_background=True, keep_reflections=True, keep_diffuse=
     else:
         mix.inputs["Fac"].default_value = 0.0
     tree.links.new(mix.outputs["Shader"], surface)
+    if keep_reflections and not keep_diffuse:
+        _eevee_output(tree, out, original, keep_background, add)
     return mix
+
+
+def _eevee_output(tree, out, original, keep_background, add):
+    """A World Output for EEVEE only whose world is seen by the camera and lights nothing (see the module's doc)."""
+    eevee = add("ShaderNodeOutputWorld", 0, -300)
+    eevee[EEVEE_OUTPUT_TAG] = 1
+    eevee.target = "EEVEE"
+    if out.target == "ALL":  # the user's output stays the one Cycles uses; a new output node may have taken
+        out.is_active_output = True  # the active flag
+    mix = add("ShaderNodeMixShader", -220, -300)
+    dark = add("ShaderNodeBackground", -440, -460)
+    dark.inputs["Strength"].default_value = 0.0
+    tree.links.new(dark.outputs["Background"], mix.inputs[1])
+    if original is not None:
+        tree.links.new(original, mix.inputs[2])
+    if keep_background:
+        path = add("ShaderNodeLightPath", -660, -300)
+        tree.links.new(path.outputs["Is Camera Ray"], mix.inputs["Fac"])
+    else:
+        mix.inputs["Fac"].default_value = 0.0
+    tree.links.new(mix.outputs["Shader"], eevee.inputs["Surface"])
 
 
 def remove_mix(world):

@@ -23,13 +23,30 @@ def args():
     p = argparse.ArgumentParser()
     p.add_argument("--zip", required=True)
     p.add_argument("--shared", default="")
-    p.add_argument("--studiolights", default="/usr/share/blender/datafiles/studiolights/world")
+    p.add_argument("--studiolights", default="", help="default: the running Blender's own studio lights")
     p.add_argument("--save", default="", help="folder to save pictures in (README images)")
     p.add_argument("--size", default="", help="WIDTHxHEIGHTxSAMPLES for the render test (README images)")
     return p.parse_args(argv)
 
 
 ADDON = "probe_lights"  # the add-on's module name once installed (install_addon sets it)
+
+
+BUNDLED_PROBE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "assets", "noon_grass_1k.hdr")
+
+
+def studiolights(a):
+    """The folder of the running Blender's own lat-long studio lights (8 CC0 .exr, shipped with every Blender)."""
+    return a.studiolights or bpy.utils.system_resource("DATAFILES", path="studiolights/world")
+
+
+def shared_probe(a, name, fallback=None):
+    """A probe from ../shared/hdri; when ../shared is absent, `fallback` (or None), saying it was skipped."""
+    path = os.path.join(a.shared, "hdri", name) if a.shared else ""
+    if path and os.path.exists(path):
+        return path
+    print("  skipped: ../shared not found (%s)%s" % (name, ", using %s" % os.path.basename(fallback) if fallback else ""))
+    return fallback
 
 
 def install_addon(zip_path):
@@ -114,6 +131,12 @@ def sky_type(sky, physical=True):
     """Sky Texture types by version: 5.0 split Nishita into single and multiple scattering."""
     names = [item.identifier for item in sky.bl_rna.properties["sky_type"].enum_items]
     sky.sky_type = "NISHITA" if "NISHITA" in names else "MULTIPLE_SCATTERING" if physical else "PREETHAM"
+
+
+def eevee_engine():
+    """EEVEE's engine name: BLENDER_EEVEE (3.x Legacy, and 5.0+), BLENDER_EEVEE_NEXT (4.2 to 4.5)."""
+    names = [e.identifier for e in bpy.types.RenderSettings.bl_rna.properties["engine"].enum_items]
+    return "BLENDER_EEVEE_NEXT" if "BLENDER_EEVEE_NEXT" in names else "BLENDER_EEVEE"
 
 
 def float_image(name, pixels_top_down):

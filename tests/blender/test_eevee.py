@@ -20,10 +20,10 @@ LUM = render_scene.LUM
 
 def test_world_mix_in_eevee():
     harness.empty_scene()
-    world = harness.env_world(bpy.data.images.load(os.path.join(ARGS.shared, "hdri", "noon_grass_1k.hdr")))
+    world = harness.env_world(bpy.data.images.load(harness.BUNDLED_PROBE))
     render_scene.sphere_over_plane(160, 120, 16)
     scene = bpy.context.scene
-    scene.render.engine = "BLENDER_EEVEE"
+    scene.render.engine = harness.eevee_engine()
     scene.render.film_transparent = False
     scene.eevee.taa_render_samples = 16
     a = render_scene.render()
@@ -42,7 +42,10 @@ def test_world_mix_in_eevee():
     like = float(np.abs(yb[objects] - ya[objects]).mean() / ya[objects].mean())
     print("  EEVEE: world light added to the baked scene %.3f %%, background vs world-lit %.3f %%, baked vs world-lit "
           "objects %.2f %%" % (100 * twice, 100 * seen, 100 * like))
-    assert twice < 0.005, twice  # the world lights nothing
+    # The world lights nothing: EEVEE Legacy 0.14 %; EEVEE Next 0.36 % (4.5) to 0.50 % (5.2), where the background the
+    # camera sees reaches the objects through screen-space effects, not through the world probe (93.8 % before
+    # the add-on gave EEVEE its own World Output).
+    assert twice < (0.005 if bpy.app.version < (4, 2, 0) else 0.01), twice
     assert seen < 0.005, seen    # but the camera still sees it
     assert like < 0.15, like     # and the suns stand in for it (EEVEE's shadows and probes are approximate)
 

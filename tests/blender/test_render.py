@@ -53,9 +53,10 @@ def compare(probe, counts):
 
 
 def test_baked_lights_render_like_the_world():
-    probes = [os.path.join(ARGS.shared, "hdri", "noon_grass_1k.hdr"),          # a strong sun (64 % of the energy)
-              os.path.join(ARGS.shared, "hdri", "studio_small_05_1k.hdr"),     # large softboxes
-              os.path.join(ARGS.studiolights, "forest.exr")]                   # dappled, Blender's own
+    probes = [harness.BUNDLED_PROBE,                                              # a strong sun (64 % of the energy)
+              harness.shared_probe(ARGS, "studio_small_05_1k.hdr",                # large softboxes
+                                   os.path.join(harness.studiolights(ARGS), "studio.exr")),
+              os.path.join(harness.studiolights(ARGS), "forest.exr")]             # dappled, Blender's own
     worst = 0.0
     for probe in probes:
         results = compare(probe, [16, 64])

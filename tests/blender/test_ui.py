@@ -22,7 +22,7 @@ def setup_world():
     from probe_lights import light_objects  # noqa: F401
     for o in list(bpy.data.objects):
         bpy.data.objects.remove(o)
-    image = bpy.data.images.load(os.path.join(ARGS.shared, "hdri", "noon_grass_1k.hdr"))
+    image = bpy.data.images.load(harness.BUNDLED_PROBE)
     world = bpy.context.scene.world
     nt = world.node_tree
     env = nt.nodes.new("ShaderNodeTexEnvironment")
