@@ -14,6 +14,13 @@ profile=$(mktemp -d)
 trap 'rm -rf "$profile"' EXIT
 export BLENDER_USER_SCRIPTS=$profile/scripts BLENDER_USER_CONFIG=$profile/config
 export BLENDER_USER_EXTENSIONS=$profile/extensions BLENDER_USER_DATAFILES=$profile/datafiles
+if [[ $(basename "$blender") != python* ]]; then
+  # Debian's Blender embeds the system Python but takes its prefix from the first python3 on PATH: under a pyenv
+  # shim (PyPI's cmake/ctest are one) that is pyenv's 3.11, which has no numpy. Give it a PATH without pyenv.
+  PATH=$(tr ':' '\n' <<<"$PATH" | grep -v '/\.pyenv/' | paste -sd:)
+  unset PYENV_VERSION PYENV_DIR PYENV_HOOK_PATH
+  export PATH
+fi
 if [[ $(basename "$blender") == python* ]]; then
   command=("$blender" "$test")
   [[ -n $gl ]] && command=(xvfb-run -a -s "-screen 0 800x600x24" "${command[@]}")
