@@ -3,7 +3,8 @@ would), build test worlds, and a tiny runner that prints one line per test and '
 
 Run a test file alone, in Debian's Blender or in a bpy module's Python (scripts/bpy-env.sh makes one):
   tests/blender/run.sh blender tests/blender/test_addon.py build/probe_lights.zip ../shared
-  tests/blender/run.sh ~/.cache/probelights/bpy-4.5.15/bin/python tests/blender/test_addon.py build/probe_lights.zip ../shared
+  tests/blender/run.sh ~/.cache/probelights/bpy-4.5.15/bin/python tests/blender/test_addon.py \
+      build/probe_lights.zip ../shared
 """
 
 import argparse
@@ -45,7 +46,8 @@ def shared_probe(a, name, fallback=None):
     path = os.path.join(a.shared, "hdri", name) if a.shared else ""
     if path and os.path.exists(path):
         return path
-    print("  skipped: ../shared not found (%s)%s" % (name, ", using %s" % os.path.basename(fallback) if fallback else ""))
+    instead = ", using %s" % os.path.basename(fallback) if fallback else ""
+    print("  skipped: ../shared not found (%s)%s" % (name, instead))
     return fallback
 
 

@@ -29,7 +29,8 @@ def bake(**settings):
 def irradiance(obj):
     """What a baked sun gives a facing surface, per channel (W/m^2): a wide Cycles sun gives less than its
     strength (conversion.sun_normal_irradiance, checked in Cycles by test_render.py)."""
-    return np.array(obj.data.color) * obj.data.energy * conversion.sun_normal_irradiance(obj.data.angle, bpy.app.version)
+    factor = conversion.sun_normal_irradiance(obj.data.angle, bpy.app.version)
+    return np.array(obj.data.color) * obj.data.energy * factor
 
 
 def sun_direction(obj):

@@ -3,6 +3,7 @@ libpthread and the loader (a blender.org build has no OpenImageIO of Debian's, a
 needing no newer glibc than measured; and a Blender without a matching module gets one line, not a traceback."""
 
 import importlib
+import importlib.util
 import os
 import re
 import shutil
@@ -10,6 +11,7 @@ import subprocess
 import sys
 import zipfile
 
+import numpy as np
 import pytest
 
 BUILD = os.environ.get("PROBELIGHTS_BUILD", os.path.join(os.path.dirname(__file__), "..", "..", "build"))
@@ -60,7 +62,33 @@ def test_a_blender_without_a_matching_module_gets_one_line(tmp_path):
             native.bake(None)
         message = str(e.value)
         assert "\n" not in message
-        assert message == "Probe Lights needs Blender with Python 3.99; this Blender runs Python %d.%d" % sys.version_info[:2]
+        running = "%d.%d" % sys.version_info[:2]
+        assert message == "Probe Lights needs Blender with Python 3.99; this Blender runs Python " + running
         assert native.unavailable() == message  # the panel's line; the failed import is not retried
     finally:
         sys.path.remove(str(tmp_path))
+
+
+def test_the_portable_build_bakes_exactly_what_the_full_one_does():
+    """The add-on's module (core on std::thread) and the full module (core on OpenImageIO's pool) are two builds of
+    one core: the same pixels give bit-identical lights, errors included."""
+    here = "%d%d" % sys.version_info[:2]
+    path = os.path.join(BUILD, "addon", "probe_lights", "_probelights.cpython-%s-x86_64-linux-gnu.so" % here)
+    if not os.path.exists(path):
+        pytest.skip("no portable module for this Python (cpython-%s)" % here)
+    import _probelights as full  # first: loading the portable one under the same name must not shadow it
+
+    spec = importlib.util.spec_from_file_location("_probelights", path)
+    portable = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(portable)
+    sys.modules["_probelights"] = full
+    assert portable.build == "pixels" and full.build == "full" and not hasattr(portable, "bake_file")
+    rng = np.random.default_rng(7)
+    image = (rng.random((128, 256, 3), dtype=np.float32) ** 8 * 50).astype(np.float32)
+    for method in ("variance", "median-cut", "sh"):
+        a = full.bake(image, method=method, lights=24, evaluate=True, effects="diffuse,shadow", evaluator_width=128)
+        b = portable.bake(image, method=method, lights=24, evaluate=True, effects="diffuse,shadow",
+                          evaluator_width=128)
+        for key in ("direction", "rgb", "solid_angle", "angular_radius", "total_rgb"):
+            assert np.array_equal(a[key], b[key]), (method, key)
+        assert a["errors"] == b["errors"], method
