@@ -1,9 +1,11 @@
-"""Render cost of many lights (Blender background benchmark): the sphere-over-plane scene of the render test lit
-by N = 4..256 baked suns at equal samples, against the world-lit render: render time and difference (8x8 block
-means of the lit pixels, tests/blender/render_scene.py). Cycles 3.4 has no light tree, so more lamps add noise.
+"""Render cost of many lights, per Blender version: the sphere-over-plane scene of the render test lit by
+N = 4..256 baked suns at equal samples, against the world-lit render: render time and difference (8x8 block means
+of the lit pixels, tests/blender/render_scene.py). Cycles 3.4 picks lamps nearly uniformly (no light tree), so
+there more lamps add noise; 4.x and 5.x pick them through a light tree. Run it in each Blender the tests cover:
 
-    BLENDER_USER_SCRIPTS=$(mktemp -d) blender -b --factory-startup -noaudio --python scripts/bench_render_counts.py \\
-        -- [PROBE] [SAMPLES]
+    tests/blender/run.sh blender scripts/bench_render_counts.py build/probe_lights.zip ../shared [PROBE] [SAMPLES]
+    tests/blender/run.sh ~/.cache/probelights/bpy-4.5.15/bin/python scripts/bench_render_counts.py \\
+        build/probe_lights.zip ../shared
 """
 import os
 import sys
@@ -13,20 +15,18 @@ import bpy
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "tests", "blender"))
+import harness  # noqa: E402
 import render_scene  # noqa: E402
 
 argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-probe = argv[0] if argv else os.path.join(HERE, "..", "assets", "noon_grass_1k.hdr")
-samples = int(argv[1]) if len(argv) > 1 else 256
+zip_path = argv[argv.index("--zip") + 1]
+rest = [a for i, a in enumerate(argv) if not a.startswith("--") and (i == 0 or not argv[i - 1].startswith("--"))]
+probe = rest[0] if rest else harness.BUNDLED_PROBE
+samples = int(rest[1]) if len(rest) > 1 else 256
 
-bpy.ops.preferences.addon_install(filepath=os.path.join(HERE, "..", "build", "probe_lights.zip"), overwrite=True)
-bpy.ops.preferences.addon_enable(module="probe_lights")
-for o in list(bpy.data.objects):
-    bpy.data.objects.remove(o)
-world = bpy.context.scene.world
-env = world.node_tree.nodes.new("ShaderNodeTexEnvironment")
-env.image = bpy.data.images.load(probe)
-world.node_tree.links.new(env.outputs["Color"], world.node_tree.nodes["Background"].inputs["Color"])
+harness.install_addon(zip_path)
+harness.empty_scene()
+harness.env_world(bpy.data.images.load(probe))
 render_scene.sphere_over_plane(128, 96, samples)
 
 
@@ -36,14 +36,16 @@ def timed_render():
     return pixels, time.perf_counter() - t
 
 
-reference, ms = timed_render()
-print("RENDER %s, %d spp, 128x96" % (os.path.basename(probe), samples))
-print("RENDER world-lit: %.2f s" % ms)
+reference, seconds = timed_render()
+print("RENDER Blender %s, %s, %d spp, 128x96" % (bpy.app.version_string, os.path.basename(probe), samples))
+print("RENDER world-lit: %.2f s" % seconds)
 bpy.context.scene.cycles.seed = 2
 again, _ = timed_render()
-print("RENDER noise floor (world vs world, other seed): %.2f %%" % (100 * render_scene.block_difference(reference, again)[0]))
+print("RENDER noise floor (world vs world, other seed): %.2f %%" % (
+    100 * render_scene.block_difference(reference, again)[0]))
 bpy.context.scene.cycles.seed = 1
 for n in (4, 8, 16, 32, 64, 128, 256):
     bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=n)
     pixels, seconds = timed_render()
-    print("RENDER %3d suns: %.2f s, difference %.2f %%" % (n, seconds, 100 * render_scene.block_difference(reference, pixels)[0]))
+    print("RENDER %3d suns: %.2f s, difference %.2f %%" % (
+        n, seconds, 100 * render_scene.block_difference(reference, pixels)[0]), flush=True)

@@ -6,7 +6,7 @@ import time
 import bpy
 import numpy as np
 
-from . import native
+from . import native, render_cost
 from .light_objects import make_lights, remove_lights
 from .properties import SETTING_NAMES, bake_settings
 from .world_graph import find_probe
@@ -73,6 +73,10 @@ def bake_world(context, settings):
         # Measured: with Blender 3.x's default clamp of 10, bounce light under 64 baked suns came out 3-5 % dark.
         notes.append("Cycles clamps indirect light at %g, which darkens bounce light from the baked lights: set "
                      "Light Paths > Clamping > Indirect to 0 for exact bounces" % clamp)
+    if scene.render.engine == "CYCLES" and settings.light_type == "SUN":
+        advice = render_cost.count_note(len(lights), bpy.app.version)
+        if advice:
+            notes.append(advice)
     total = float(np.dot(baked["total_rgb"], (0.2126, 0.7152, 0.0722)))
     captured = float(np.sum(baked["rgb"] @ np.array([0.2126, 0.7152, 0.0722])))
     errors = baked.get("errors", {})

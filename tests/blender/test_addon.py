@@ -136,6 +136,18 @@ def test_estimated_errors_and_count_by_tolerance():
     assert len(refit) == 16
 
 
+def test_more_suns_than_pay_off_are_reported_with_this_versions_measurements():
+    harness.empty_scene()
+    harness.env_world(bpy.data.images.load(harness.BUNDLED_PROBE))
+    settings = bpy.context.scene.probe_lights
+    bake(count=64)
+    assert "bring this Cycles no closer" not in settings.last_notes, settings.last_notes
+    bake(count=128)
+    measured = harness.addon_module("render_cost").measured_version(bpy.app.version)
+    assert "measured in Blender %s" % ".".join(map(str, measured)) in settings.last_notes, settings.last_notes
+    print("  note at 128 suns: " + settings.last_notes.split("; ")[-1])
+
+
 def test_tradeoff_in_the_panel():
     harness.empty_scene()
     world = harness.env_world(bpy.data.images.load(harness.BUNDLED_PROBE))
@@ -345,7 +357,8 @@ def test_point_lights_give_the_same_irradiance_at_the_origin():
 
 harness.run([test_register_unregister, test_real_probes_bake_with_their_energy,
              test_strength_and_rotation_carry_into_the_lights, test_every_method_bakes,
-             test_estimated_errors_and_count_by_tolerance, test_tradeoff_in_the_panel, test_node_group_and_reroute, test_mirror_ball_image,
+             test_estimated_errors_and_count_by_tolerance,
+             test_more_suns_than_pay_off_are_reported_with_this_versions_measurements, test_tradeoff_in_the_panel, test_node_group_and_reroute, test_mirror_ball_image,
              test_sky_texture_world_is_rendered, test_read_and_rendered_worlds_agree,
              test_plain_colour_world_and_its_restore,
              test_rebake_replaces_only_its_own_lights, test_restore_brings_the_world_back_exactly,
