@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "probelights/error.h"
 
@@ -56,19 +57,27 @@ AutoCountResult autoCount(const Probe& probe, const Evaluator& evaluator, BakeOp
     best.tried.push_back({n, e.worst(evaluator.effects())});
     return std::pair{std::move(r), e};
   };
-  // Doubling until the tolerance is met, then bisection between the last miss and the first hit.
+  // Doubling until the tolerance is met, then bisection between the last miss and the first hit. The error is not
+  // monotonic in the count (shadows of many small lights can be worse than of a few), so a miss keeps the count
+  // with the lowest error seen (fewest lights on a tie), and the doubling stops once two doublings past that count
+  // did not improve on it: a miss never costs more lights than a count that did better.
   int lo = 0, hi = 0;
+  double bestError = std::numeric_limits<double>::infinity();
   for (int n = 1; n <= maxLights; n *= 2) {
     auto [r, e] = attempt(n);
-    if (e.worst(evaluator.effects()) <= tolerance) {
+    const double worst = e.worst(evaluator.effects());
+    const bool fewerLit = static_cast<int>(r.lights.size()) < n;  // more lights than lit pixels: more cannot help
+    if (worst <= tolerance) {
       hi = n;
       best.bake = std::move(r), best.errors = e, best.lights = n, best.met = true;
       break;
     }
     lo = n;
-    best.bake = std::move(r), best.errors = e, best.lights = n;
-    if (static_cast<int>(best.bake.lights.size()) < n)
-      break;  // fewer lit pixels than lights: more cannot help
+    if (worst < bestError) {
+      bestError = worst;
+      best.bake = std::move(r), best.errors = e, best.lights = n;
+    }
+    if (fewerLit || n >= 4 * best.lights) break;
   }
   if (!best.met) return best;
   while (hi - lo > 1) {
@@ -101,9 +110,13 @@ EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOpt
     out.autoCount = true, out.met = chosen.met, out.tried = std::move(chosen.tried),
     out.lights = chosen.lights;
     char line[200];
-    std::snprintf(line, sizeof line, "%s: %d lights, worst error %.2f%% (asked at most %.2f%%)",
-                  chosen.met ? "auto count" : "auto count missed the tolerance", chosen.lights,
-                  100 * chosen.errors.worst(a.effects), 100 * a.maxError);
+    if (chosen.met)
+      std::snprintf(line, sizeof line, "auto count: %d lights, worst error %.2f%% (asked at most %.2f%%)",
+                    chosen.lights, 100 * chosen.errors.worst(a.effects), 100 * a.maxError);
+    else
+      std::snprintf(line, sizeof line,
+                    "no count met the tolerance of %.2f%%: using %d lights, the lowest error found (%.2f%%)",
+                    100 * a.maxError, chosen.lights, 100 * chosen.errors.worst(a.effects));
     out.bake.notes.push_back(line);
   } else {
     out.bake = bake(probe, options);

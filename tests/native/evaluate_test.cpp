@@ -130,6 +130,24 @@ TEST(AutoCount, FindsTheSmallestCountThatMeetsTheTolerance) {
   EXPECT_FALSE(never.met);
 }
 
+TEST(AutoCount, AMissKeepsTheCountWithTheLowestError) {
+  // Shadows of many narrow lights can be worse than of a few: when the tolerance is missed, the result is the
+  // count with the lowest error tried, never a larger count that did worse.
+  Probe probe = Probe::load(PROBELIGHTS_BUNDLED_PROBE);
+  Evaluator ev(probe, kDiffuse | kShadow, {256, false});
+  auto r = autoCount(probe, ev, BakeOptions{}, 1e-9, false, 1024);
+  ASSERT_FALSE(r.met);
+  double lowest = 1e300;
+  int at = 0;
+  for (auto [n, e] : r.tried)
+    if (e < lowest) lowest = e, at = n;
+  EXPECT_EQ(r.lights, at);
+  EXPECT_DOUBLE_EQ(r.errors.worst(kDiffuse | kShadow), lowest);
+  EXPECT_EQ(static_cast<int>(r.bake.lights.size()), r.lights);
+  for (auto [n, e] : r.tried) EXPECT_TRUE(n < r.lights || e >= lowest);
+  EXPECT_LE(r.tried.back().first, 4 * r.lights);  // stopped two doublings past the best
+}
+
 TEST(Effects, ParseAndPrint) {
   EXPECT_EQ(parseEffects("diffuse,shadow"), kDiffuse | kShadow);
   EXPECT_EQ(effectsToString(kDiffuse | kGlossy), "diffuse,glossy");
