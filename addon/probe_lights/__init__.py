@@ -1,7 +1,8 @@
 """Probe Lights: bake the world's HDRI into sun or point lights that light the scene the way the world does.
 
-Layout (glTF-Blender-IO style): rules that need no bpy (world_graph.py, conversion.py) apart from Blender glue
-(world_image.py, world_mix.py, light_objects.py, operators.py, properties.py, ui.py). The sampling itself is the
+Layout (glTF-Blender-IO style): rules that need no bpy (world_graph.py, conversion.py, render_cost.py, text_fit.py)
+apart from Blender glue (world_image.py, world_mix.py, light_objects.py, cycles_settings.py), what a click does
+(bake.py), and the thin shells the user touches (operators.py, properties.py, ui.py). The sampling itself is the
 native module _probelights, built into this package and imported on first use (native.py).
 """
 
@@ -17,7 +18,7 @@ bl_info = {
 
 import bpy  # noqa: E402
 
-from . import operators, properties, ui  # noqa: E402
+from . import light_objects, operators, properties, ui  # noqa: E402
 
 classes = properties.classes + operators.classes + ui.classes
 
@@ -26,9 +27,11 @@ def register():
     for cls in classes:
         bpy.utils.register_class(cls)
     properties.register()
+    light_objects.register()
 
 
 def unregister():
+    light_objects.unregister()
     properties.unregister()
     for cls in reversed(classes):
         bpy.utils.unregister_class(cls)

@@ -1,88 +1,17 @@
-"""Operators: bake the world to lights, and restore the world (and remove the lights)."""
+"""Operators: pass the panel's settings to bake.py and report what happened, on one line plus one WARNING report
+per warning."""
 
-import json
 import time
 
 import bpy
-import numpy as np
 
-from . import native, render_cost
-from .light_objects import make_lights, remove_lights
-from .properties import SETTING_NAMES, bake_settings
-from .world_graph import find_probe
+from . import cycles_settings, native
+from .bake import bake_world, report_lines, restore_world, world_probe
 from .errors import ProbeError
-from .world_image import image_pixels, render_world
-from .world_mix import insert_mix, remove_mix
+from .properties import SETTING_NAMES, bake_settings
 
-RENDER_WIDTH = 1024  # lat-long width a world without a readable image is rendered at
-
-
-def _rendered_probe(world):
-    """Renders a copy of the world without our mix (so a re-bake sees the world as the user made it)."""
-    copy = world.copy()
-    try:
-        remove_mix(copy)
-        return render_world(copy, RENDER_WIDTH)
-    finally:
-        bpy.data.worlds.remove(copy)
-
-
-def world_probe(world):
-    """The world's probe: (pixels, projection, a description, the ProbeSource). Read from its image where the rules
-    of world_graph.py find one, else rendered (on a copy: the world itself is not touched)."""
-    if world is None:
-        raise ProbeError("the scene has no world: add one in World properties")
-    try:
-        source = find_probe(world, bpy.app.version)
-    except ValueError as e:
-        raise ProbeError(str(e))
-    if source.image is not None:
-        return (image_pixels(source.image), source.projection,
-                "image '%s' (%s)" % (source.image.name, source.projection), source)
-    return _rendered_probe(world), "latlong", "rendered world (%s)" % source.render_reason, source
-
-
-def bake_world(context, settings):
-    """Bakes the scene's world with `settings` (anything with the bake_settings() attributes). Returns a summary."""
-    scene = context.scene
-    world = scene.world
-    start = time.perf_counter()
-    wm = context.window_manager
-    wm.progress_begin(0, 100)
-    try:
-        pixels, projection, described, source = world_probe(world)
-        wm.progress_update(50)
-        # The errors are estimated on the probe grouped to 512 pixels wide: ~50 ms at any probe size.
-        max_error = settings.max_error / 100.0 if settings.count_mode == "TOLERANCE" else 0.0
-        baked = native.bake(pixels, projection=projection, method=settings.method, lights=settings.count,
-                                  resolution=settings.resolution, evaluate=True, effects="diffuse,shadow",
-                                  evaluator_width=512, refit=settings.refit, move_directions=settings.refit,
-                                  max_error=max_error)
-        wm.progress_update(80)
-        remove_lights(scene)
-        lights = make_lights(scene, baked, source.world_from_probe, source.strength, settings.light_type,
-                             settings.soft_shadows, settings.distance, lights_diffuse=settings.replace_diffuse,
-                             lights_glossy=settings.replace_reflections)
-        insert_mix(world, keep_background=not settings.replace_background,
-                   keep_reflections=not settings.replace_reflections, keep_diffuse=not settings.replace_diffuse)
-    finally:
-        wm.progress_end()
-    notes = list(baked["notes"])
-    clamp = getattr(getattr(scene, "cycles", None), "sample_clamp_indirect", 0.0)
-    if scene.render.engine == "CYCLES" and clamp > 0 and len(lights) > 1:
-        # Measured: with Blender 3.x's default clamp of 10, bounce light under 64 baked suns came out 3-5 % dark.
-        notes.append("Cycles clamps indirect light at %g, which darkens bounce light from the baked lights: set "
-                     "Light Paths > Clamping > Indirect to 0 for exact bounces" % clamp)
-    if scene.render.engine == "CYCLES" and settings.light_type == "SUN":
-        advice = render_cost.count_note(len(lights), bpy.app.version)
-        if advice:
-            notes.append(advice)
-    total = float(np.dot(baked["total_rgb"], (0.2126, 0.7152, 0.0722)))
-    captured = float(np.sum(baked["rgb"] @ np.array([0.2126, 0.7152, 0.0722])))
-    errors = baked.get("errors", {})
-    return {"count": len(lights), "energy": 100.0 * captured / total if total > 0 else 0.0,
-            "ms": 1000.0 * (time.perf_counter() - start), "source": described, "notes": notes,
-            "diffuse_error": 100.0 * errors.get("diffuse", -0.01), "shadow_error": 100.0 * errors.get("shadow", -0.01)}
+TRADEOFF_COUNTS = [4, 8, 16, 32, 64, 128, 256]
+LAMP_MS = 0.3  # making one lamp with its drivers, before any bake measured it (Blender 3.4 and 4.5: 0.2-0.3 ms)
 
 
 class PROBE_LIGHTS_OT_bake(bpy.types.Operator):
@@ -102,11 +31,15 @@ class PROBE_LIGHTS_OT_bake(bpy.types.Operator):
         return self.execute(context)
 
     def execute(self, context):
+        wm = context.window_manager
+        wm.progress_begin(0, 100)
         try:
-            summary = bake_world(context, self)
+            summary = bake_world(context, self, progress=lambda f: wm.progress_update(int(100 * f)))
         except ProbeError as e:
             self.report({"ERROR"}, str(e))
             return {"CANCELLED"}
+        finally:
+            wm.progress_end()
         settings = context.scene.probe_lights
         for name in SETTING_NAMES:
             setattr(settings, name, getattr(self, name))
@@ -114,38 +47,115 @@ class PROBE_LIGHTS_OT_bake(bpy.types.Operator):
         settings.last_energy = summary["energy"]
         settings.last_ms = summary["ms"]
         settings.last_source = summary["source"]
-        settings.last_notes = "; ".join(summary["notes"])
+        settings.last_notes = "\n".join(summary["notes"])
+        settings.last_warnings = "\n".join(summary["warnings"])
         settings.last_diffuse_error = summary["diffuse_error"]
         settings.last_shadow_error = summary["shadow_error"]
-        self.report({"INFO"}, "Baked %d lights from %s in %.0f ms; estimated error: diffuse %.2f %%, shadow %.2f %%" % (
-            summary["count"], summary["source"], summary["ms"], summary["diffuse_error"], summary["shadow_error"]))
+        if summary["count"]:
+            settings.last_ms_per_lamp = summary["timings"]["lamps"] / summary["count"]
+        for kind, text in report_lines(summary):
+            self.report({kind}, text)
+        settings.last_report = text
         return {"FINISHED"}
-
-
-TRADEOFF_COUNTS = [4, 8, 16, 32, 64, 128, 256]
 
 
 class PROBE_LIGHTS_OT_tradeoff(bpy.types.Operator):
     """Measure what accuracy costs: bake the world with 4 to 256 lights (with and without the refit) and show each
-    count's bake time and estimated diffuse and shadow error; nothing in the scene changes"""
+    count's time for a whole click and estimated diffuse and shadow error; nothing in the scene changes. Esc stops"""
 
     bl_idname = "probe_lights.tradeoff"
     bl_label = "Measure tradeoff"
     bl_options = {"REGISTER"}
 
-    def execute(self, context):
+    def _start(self, context):
         settings = context.scene.probe_lights
+        start = time.perf_counter()
+        self._probe = world_probe(context.scene.world)
+        self._probe_ms = 1000 * (time.perf_counter() - start)
+        self._lamp_ms = settings.last_ms_per_lamp or LAMP_MS
+        self._method = settings.method
+        self._done = 0
+        settings.tradeoff.clear()
+        settings.tradeoff_method = settings.method
+        settings.tradeoff_source = self._probe[2]
+
+    def _step(self, context):
+        """Measures the next count; True when all are done."""
+        n = TRADEOFF_COUNTS[self._done]
+        pixels, projection = self._probe[0], self._probe[1]
+        rows = native.tradeoff(pixels, projection=projection, effects="diffuse,shadow", counts=[n],
+                               methods=[self._method], refit=True, evaluator_width=512)
+        for r in rows:
+            row = context.scene.probe_lights.tradeoff.add()
+            row.lights, row.refit, row.bake_ms = r["lights"], r["refit"], r["bake_ms"]
+            row.click_ms = self._probe_ms + r["bake_ms"] + r["lights"] * self._lamp_ms
+            row.diffuse, row.shadow = r["diffuse"], r["shadow"]
+        self._done += 1
+        return self._done == len(TRADEOFF_COUNTS)
+
+    def _finish(self, context, stopped=False):
+        self.report({"INFO"}, "Measured %d light counts of %s%s" % (
+            self._done, self._probe[2], " (stopped)" if stopped else ""))
+
+    def execute(self, context):
         try:
-            pixels, projection, described, _ = world_probe(context.scene.world)
-            rows = native.tradeoff(pixels, projection=projection, effects="diffuse,shadow",
-                                         counts=TRADEOFF_COUNTS, methods=[settings.method], refit=True,
-                                         evaluator_width=512)
+            self._start(context)
+            while not self._step(context):
+                pass
         except ProbeError as e:
             self.report({"ERROR"}, str(e))
             return {"CANCELLED"}
-        settings.tradeoff_rows = json.dumps({"method": settings.method, "source": described, "rows": rows})
-        self.report({"INFO"}, "Measured %d light counts of %s" % (len(TRADEOFF_COUNTS), described))
+        self._finish(context)
         return {"FINISHED"}
+
+    def invoke(self, context, event):
+        try:
+            self._start(context)
+        except ProbeError as e:
+            self.report({"ERROR"}, str(e))
+            return {"CANCELLED"}
+        wm = context.window_manager
+        self._timer = wm.event_timer_add(0.01, window=context.window)
+        wm.progress_begin(0, len(TRADEOFF_COUNTS))
+        wm.modal_handler_add(self)
+        self._status(context)
+        return {"RUNNING_MODAL"}
+
+    def _status(self, context, text=None):
+        if context.workspace is not None:
+            context.workspace.status_text_set(text if text is not None else
+                                              "Measuring tradeoff: %d of %d light counts done (Esc stops)" % (
+                                                  self._done, len(TRADEOFF_COUNTS)))
+
+    def _end(self, context):
+        wm = context.window_manager
+        wm.event_timer_remove(self._timer)
+        wm.progress_end()
+        if context.workspace is not None:
+            context.workspace.status_text_set(None)
+        for area in context.screen.areas if context.screen else ():
+            area.tag_redraw()
+
+    def modal(self, context, event):
+        if event.type == "ESC":
+            self._end(context)
+            self._finish(context, stopped=True)
+            return {"CANCELLED"}
+        if event.type != "TIMER":
+            return {"PASS_THROUGH"}
+        try:
+            done = self._step(context)
+        except ProbeError as e:
+            self._end(context)
+            self.report({"ERROR"}, str(e))
+            return {"CANCELLED"}
+        context.window_manager.progress_update(self._done)
+        self._status(context)
+        if done:
+            self._end(context)
+            self._finish(context)
+            return {"FINISHED"}
+        return {"RUNNING_MODAL"}
 
 
 class PROBE_LIGHTS_OT_set_count(bpy.types.Operator):
@@ -164,22 +174,48 @@ class PROBE_LIGHTS_OT_set_count(bpy.types.Operator):
 
 
 class PROBE_LIGHTS_OT_restore(bpy.types.Operator):
-    """Remove the baked lights and bring the world back exactly as it was before the bake"""
+    """Remove a world's baked lights and bring the world back exactly as it was before the bake (and the Cycles
+    settings the add-on set, once no baked world is left)"""
 
     bl_idname = "probe_lights.restore"
     bl_label = "Restore world"
     bl_options = {"REGISTER", "UNDO"}
+    world: bpy.props.StringProperty(name="World", description="The world to restore (default: the scene's)")
 
     def execute(self, context):
         scene = context.scene
-        removed = remove_lights(scene)
-        restored = remove_mix(scene.world)
-        scene.probe_lights.last_count = 0
-        if not removed and not restored:
-            self.report({"INFO"}, "Nothing to restore: the world was not baked")
+        world = bpy.data.worlds.get(self.world) if self.world else scene.world
+        if world is None:
+            self.report({"ERROR"}, "no world named '%s'" % self.world if self.world else "the scene has no world")
+            return {"CANCELLED"}
+        done = restore_world(scene, world)
+        if world == scene.world:
+            scene.probe_lights.last_count = 0
+            scene.probe_lights.last_warnings = scene.probe_lights.last_notes = ""
+        if not done:
+            self.report({"INFO"}, "Nothing to restore: world '%s' was not baked" % world.name)
         else:
-            self.report({"INFO"}, "Removed %d lights%s" % (removed, ", restored the world" if restored else ""))
+            self.report({"INFO"}, done[0].upper() + done[1:])
         return {"FINISHED"}
 
 
-classes = (PROBE_LIGHTS_OT_bake, PROBE_LIGHTS_OT_restore, PROBE_LIGHTS_OT_tradeoff, PROBE_LIGHTS_OT_set_count)
+class PROBE_LIGHTS_OT_cycles_settings(bpy.types.Operator):
+    """Set what the baked lamps need in Cycles: indirect clamp 0 (the default of 10 darkens their bounce light) and
+    the light tree where Blender has one; Restore world puts the old values back"""
+
+    bl_idname = "probe_lights.cycles_settings"
+    bl_label = "Use Cycles settings for lamps"
+    bl_options = {"REGISTER", "UNDO"}
+
+    def execute(self, context):
+        changed = cycles_settings.apply(context.scene)
+        if changed:
+            self.report({"INFO"}, "Cycles: set %s (Restore world puts them back)" % ", ".join(
+                {"sample_clamp_indirect": "indirect clamp 0", "use_light_tree": "light tree on"}[c] for c in changed))
+        else:
+            self.report({"INFO"}, "Cycles settings already suit the lamps")
+        return {"FINISHED"}
+
+
+classes = (PROBE_LIGHTS_OT_bake, PROBE_LIGHTS_OT_restore, PROBE_LIGHTS_OT_tradeoff, PROBE_LIGHTS_OT_set_count,
+           PROBE_LIGHTS_OT_cycles_settings)

@@ -1,7 +1,7 @@
 """Settings the panels show (per scene) and what the last bake measured."""
 
 import bpy
-from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, StringProperty
+from bpy.props import BoolProperty, CollectionProperty, EnumProperty, FloatProperty, IntProperty, StringProperty
 
 METHODS = [("variance", "Variance minimization", "Cut where the light's spread is least (Viriyothai & Debevec 2009)"),
            ("median-cut", "Median cut", "Equal-energy regions (Debevec 2005)"),
@@ -14,8 +14,8 @@ RESOLUTIONS = [("auto", "Auto", "Cuts on a grid at most 2048 pixels wide (exact 
 COUNT_MODES = [("COUNT", "Count", "Make this many lights"),
                ("TOLERANCE", "Max error", "Make the fewest lights whose estimated diffuse and shadow error is within the "
                                           "tolerance")]
-SETTING_NAMES = ("count", "method", "light_type", "resolution", "soft_shadows", "distance", "replace_diffuse",
-                 "replace_reflections", "replace_background", "count_mode", "max_error", "refit")
+NON_FINITE = [("error", "Stop", "Stop with an error naming how many NaN/Inf samples the image has"),
+              ("zero", "Zero", "Read NaN/Inf samples as 0 (black) and say how many")]
 
 
 def bake_settings():
@@ -39,9 +39,25 @@ def bake_settings():
         "count_mode": EnumProperty(name="Count by", items=COUNT_MODES, default="COUNT"),
         "max_error": FloatProperty(name="Max error", default=2.0, min=0.05, max=50.0, subtype="PERCENTAGE",
                                    description="Largest estimated diffuse/shadow error (relative RMS) to accept"),
-        "refit": BoolProperty(name="Refit to the world's diffuse light", default=False,
+        "non_finite": EnumProperty(name="NaN/Inf pixels", items=NON_FINITE, default="error"),
+        "refit": BoolProperty(name="Refit to diffuse", default=False,
                               description="Re-solve the lights' colours and nudge their directions so their diffuse "
                                           "light matches the world's (about halves the diffuse error at few lights)"),
+    }
+
+
+SETTING_NAMES = tuple(bake_settings())
+
+
+class ProbeLightsTradeoffRow(bpy.types.PropertyGroup):
+    """One row of the accuracy-vs-time table: a light count, plain or refit."""
+    __annotations__ = {
+        "lights": IntProperty(),
+        "refit": BoolProperty(),
+        "bake_ms": FloatProperty(),
+        "click_ms": FloatProperty(),  # what a click costs: reading or rendering the world, the bake, the lamps
+        "diffuse": FloatProperty(),   # estimated relative RMS errors, fractions
+        "shadow": FloatProperty(),
     }
 
 
@@ -52,14 +68,19 @@ class ProbeLightsSettings(bpy.types.PropertyGroup):
         "last_energy": FloatProperty(default=0.0, subtype="PERCENTAGE"),
         "last_ms": FloatProperty(default=0.0),
         "last_source": StringProperty(default=""),
-        "last_notes": StringProperty(default=""),
+        "last_notes": StringProperty(default=""),     # one per line
+        "last_warnings": StringProperty(default=""),  # one per line
+        "last_report": StringProperty(default=""),    # the bake's summary report (the status bar's line)
         "last_diffuse_error": FloatProperty(default=-1.0),
         "last_shadow_error": FloatProperty(default=-1.0),
-        "tradeoff_rows": StringProperty(default=""),  # JSON from the tradeoff operator
+        "last_ms_per_lamp": FloatProperty(default=0.0),
+        "tradeoff": CollectionProperty(type=ProbeLightsTradeoffRow),
+        "tradeoff_method": StringProperty(default=""),
+        "tradeoff_source": StringProperty(default=""),
     }
 
 
-classes = (ProbeLightsSettings,)
+classes = (ProbeLightsTradeoffRow, ProbeLightsSettings)
 
 
 def register():

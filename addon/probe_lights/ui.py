@@ -1,78 +1,155 @@
-"""Panels: World properties and the 3D viewport sidebar show the same controls."""
-
-import json
+"""Panels: World properties and the 3D viewport sidebar show the same controls, laid out to fit the editors' default
+widths: short labels, enums as buttons, and every long line (results, notes, warnings) wrapped to the region."""
 
 import bpy
 
-from . import native
+from . import cycles_settings, native
+from .bake import image_changed
+from .light_objects import baked_worlds, world_collection
+from .text_fit import fits, wrap
 from .world_mix import has_mix
+
+# Lines that did not fit their width in the last draw (the screenshot test asserts none); cleared at each draw.
+OVERFLOW = []
+
+
+def _font_measure():
+    """Width in pixels of a text in the interface font (blf), at the interface's scale."""
+    import blf
+    prefs = bpy.context.preferences
+    points = prefs.ui_styles[0].widget.points if hasattr(prefs.ui_styles[0].widget, "points") else 11
+    size = points * prefs.system.ui_scale
+    try:
+        blf.size(0, size)
+    except TypeError:  # Blender before 4.0 takes a dpi as well
+        blf.size(0, size, 72)
+    return lambda text: blf.dimensions(0, text)[0]
+
+
+def _lines(layout, text, width, measure, icon="NONE"):
+    for i, line in enumerate(wrap(text, width, measure)):
+        if not fits(line, width, measure):
+            OVERFLOW.append(line)
+        layout.label(text=line, icon=icon if i == 0 else "BLANK1")
 
 
 def draw_panel(layout, context):
-    settings = context.scene.probe_lights
+    OVERFLOW.clear()
+    scene = context.scene
+    settings = scene.probe_lights
+    measure = _font_measure()
+    scale = context.preferences.system.ui_scale
+    # What a label has once the panel's margins, a leading icon and the label's padding are taken off (and in the
+    # sidebar its tabs), less 5 % to spare: measured on screenshots of both editors (tests/blender/test_ui.py).
+    region = context.region
+    tabs = 24 if region is not None and region.type == "UI" else 0
+    width = 0.95 * ((region.width if region else 300) - (58 + tabs) * scale)
     problem = native.unavailable()
     if problem:
-        layout.label(text=problem, icon="ERROR")
+        _lines(layout.column(align=True), problem, width, measure, icon="ERROR")
+
     col = layout.column(align=True)
-    col.prop(settings, "method")
-    row = col.row(align=True)
-    row.prop(settings, "count_mode", expand=True)
+    col.prop(settings, "method", text="")
+    col.row(align=True).prop(settings, "count_mode", expand=True)
     col.prop(settings, "count" if settings.count_mode == "COUNT" else "max_error")
-    col.prop(settings, "refit")
-    col.prop(settings, "light_type")
+    col = layout.column(align=True)
+    col.row(align=True).prop(settings, "light_type", expand=True)
     if settings.light_type == "SUN":
         col.prop(settings, "soft_shadows")
     else:
         col.prop(settings, "distance")
+    col.prop(settings, "refit")
     if settings.method != "sh":  # the SH method does not cut on a working grid
-        col.prop(settings, "resolution")
+        row = col.row(align=True)
+        row.label(text="Grid")
+        row.prop(settings, "resolution", expand=True)
+    row = col.row(align=True)
+    row.label(text="NaN/Inf")
+    row.prop(settings, "non_finite", expand=True)
+
     box = layout.box()
-    box.label(text="Replace with lights:")
-    row = box.row(align=True)
-    row.prop(settings, "replace_diffuse", toggle=True)
-    row.prop(settings, "replace_reflections", toggle=True)
-    row.prop(settings, "replace_background", toggle=True)
-    row = layout.row(align=True)
+    box.label(text="Lamps replace the world's:")
+    c = box.column(align=True)
+    c.prop(settings, "replace_diffuse")
+    c.prop(settings, "replace_reflections")
+    c.prop(settings, "replace_background")
+
+    row = layout.row()
     row.scale_y = 1.4
     row.operator("probe_lights.bake", icon="LIGHT_SUN")
+    row = layout.row(align=True)
     sub = row.row(align=True)
-    sub.enabled = has_mix(context.scene.world) or settings.last_count > 0
-    sub.operator("probe_lights.restore", icon="LOOP_BACK")
-    layout.operator("probe_lights.tradeoff", icon="SORTTIME")
-    if settings.tradeoff_rows:
-        draw_tradeoff(layout, json.loads(settings.tradeoff_rows))
+    sub.enabled = has_mix(scene.world) or world_collection(scene.world) is not None
+    sub.operator("probe_lights.restore", text="Restore", icon="LOOP_BACK")
+    row.operator("probe_lights.tradeoff", text="Tradeoff", icon="SORTTIME")
+
+    _draw_results(layout, context, width, measure)
+    if len(settings.tradeoff):
+        draw_tradeoff(layout, settings, width, measure)
+    _draw_baked_worlds(layout, scene)
+
+
+def _draw_results(layout, context, width, measure):
+    scene = context.scene
+    settings = scene.probe_lights
+    changed = image_changed(scene.world) if scene.world is not None and world_collection(scene.world) else ""
+    if changed:
+        _lines(layout.column(align=True), "The world now reads '%s': bake again to follow it" % changed, width,
+               measure, icon="ERROR")
     if settings.last_count:
         col = layout.column(align=True)
-        col.label(text="%d lights, %.1f %% of the energy, %.0f ms" % (settings.last_count, settings.last_energy,
-                                                                    settings.last_ms))
-        col.label(text="From " + settings.last_source)
+        _lines(col, "%d lights, %.1f %% of the energy, %.0f ms" % (settings.last_count, settings.last_energy,
+                                                                   settings.last_ms), width, measure, icon="CHECKMARK")
+        _lines(col, "From " + settings.last_source, width, measure, icon="BLANK1")
         if settings.last_diffuse_error >= 0:
-            col.label(text="Estimated error: diffuse %.2f %%, shadow %.2f %%" % (settings.last_diffuse_error,
-                                                                            settings.last_shadow_error))
-        if settings.last_notes:
-            col.label(text=settings.last_notes, icon="INFO")
+            _lines(col, "Estimated error: diffuse %.2f %%, shadow %.2f %%" % (settings.last_diffuse_error,
+                                                                            settings.last_shadow_error),
+                   width, measure, icon="BLANK1")
+        for note in filter(None, settings.last_notes.split("\n")):
+            _lines(col, note, width, measure, icon="INFO")
+        for warning in filter(None, settings.last_warnings.split("\n")):
+            if "Use Cycles settings" not in warning:
+                _lines(col, warning, width, measure, icon="ERROR")
+    offer = cycles_settings.advice(scene, settings.last_count) if settings.last_count else ""
+    if offer:
+        box = layout.box()
+        _lines(box.column(align=True), offer, width - 16, measure, icon="ERROR")
+        box.operator("probe_lights.cycles_settings", icon="CHECKMARK")
 
 
-def draw_tradeoff(layout, table):
-    """What accuracy costs, per light count: bake time and estimated errors, plain and refit; a count's button uses
-    it."""
+def _draw_baked_worlds(layout, scene):
+    """Every baked world with its Restore button, when there is more than the scene's own."""
+    worlds = baked_worlds()
+    if not worlds or worlds == [scene.world]:
+        return
     box = layout.box()
-    box.label(text="Accuracy vs time, %s, %s" % (table["method"], table["source"]), icon="SORTTIME")
-    by_count = {}
-    for r in table["rows"]:
-        by_count.setdefault(r["lights"], {})[r["refit"]] = r
-    header = box.row()
-    for text in ("Lights", "Bake ms", "Diffuse", "Shadow", "Refit: diffuse", "Shadow"):
-        header.label(text=text)
-    for n in sorted(by_count):
-        plain, refit = by_count[n].get(False), by_count[n].get(True)
-        row = box.row()
-        row.operator("probe_lights.set_count", text=str(n)).count = n
-        row.label(text="%.1f" % plain["bake_ms"])
-        row.label(text="%.2f %%" % (100 * plain["diffuse"]))
-        row.label(text="%.2f %%" % (100 * plain["shadow"]))
-        row.label(text="%.2f %%" % (100 * refit["diffuse"]) if refit else "")
-        row.label(text="%.2f %%" % (100 * refit["shadow"]) if refit else "")
+    box.label(text="Baked worlds", icon="WORLD")
+    for world in worlds:
+        row = box.row(align=True)
+        row.label(text=world.name, icon="CHECKBOX_HLT" if world == scene.world else "BLANK1")
+        row.operator("probe_lights.restore", text="Restore", icon="LOOP_BACK").world = world.name
+
+
+def _percent(fraction):
+    """Three significant digits at most four characters wide, to fit a quarter of the sidebar."""
+    p = 100 * fraction
+    return "%.2f" % p if p < 10 else "%.1f" % p if p < 100 else "%.0f" % p
+
+
+def draw_tradeoff(layout, settings, width, measure):
+    """What accuracy costs, per light count: a whole click's time and the estimated errors (refit rows when the
+    panel's Refit is on); a count's button uses it."""
+    box = layout.box()
+    col = box.column(align=True)
+    _lines(col, "Tradeoff (%s%s): lights, ms per click (world, bake, lamps), estimated diffuse and shadow error %%" % (
+        settings.tradeoff_method, ", refit" if settings.refit else ""), width - 16, measure, icon="SORTTIME")
+    for r in sorted((r for r in settings.tradeoff if r.refit == settings.refit), key=lambda r: r.lights):
+        row = box.row(align=True)
+        row.operator("probe_lights.set_count", text=str(r.lights)).count = r.lights
+        for text in ("%.0f" % r.click_ms, _percent(r.diffuse), _percent(r.shadow)):
+            if not fits(text, width / 4 - 6, measure):
+                OVERFLOW.append(text)
+            row.label(text=text)
 
 
 class PROBE_LIGHTS_PT_world(bpy.types.Panel):

@@ -26,6 +26,11 @@ class ProbeSource:
     strength: float = 1.0
     render_reason: str = ""           # why the world is rendered instead of read ("" when image is set)
     image_node: object = None
+    strength_socket: object = None    # the Background's Strength input (a constant): lamps follow it by drivers
+    # When the direction chain is one Mapping node, its Rotation input and whether world_from_probe is the inverse
+    # of its Euler rotation (Point/Vector/Normal) or the rotation itself (Texture): lamps follow it by drivers.
+    rotation_socket: object = None
+    rotation_inverted: bool = True
 
 
 def euler_xyz_matrix(rx, ry, rz):
@@ -121,19 +126,21 @@ def _vector_chain(socket, groups):
     Walking upstream from the texture, each node found is applied to the direction before the ones already seen,
     so its matrix multiplies on the right."""
     a = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]
+    chain = []  # the nodes that turn the direction, texture first
     while True:
         found = _linked_output(socket, groups)
         if found is None:
             if socket.node.bl_idname == "ShaderNodeTexEnvironment":
-                return a  # an unlinked Vector on the texture is the view direction
+                return a, chain  # an unlinked Vector on the texture is the view direction
             raise _Render("an unlinked vector input on '%s'" % socket.node.name)
         out, groups = found
         node = out.node
+        chain.append(node)
         kind = node.bl_idname
         if kind == "ShaderNodeTexCoord":
             if out.identifier != "Generated":
                 raise _Render("texture coordinates '%s' (only Generated is read directly)" % out.name)
-            return a
+            return a, chain[:-1]
         if kind == "ShaderNodeMapping":
             r = _constant(node.inputs["Rotation"], "Mapping rotation")
             s = _constant(node.inputs["Scale"], "Mapping scale") if "Scale" in node.inputs else (1, 1, 1)
@@ -224,6 +231,10 @@ def _find(world, blender_version):
     projection = {"EQUIRECTANGULAR": "latlong", "MIRROR_BALL": "mirror-ball"}.get(tex.projection)
     if projection is None:
         raise _Render("environment projection %s" % tex.projection)
-    lookup_from_world = _vector_chain(tex.inputs["Vector"], groups)
-    return ProbeSource(image=tex.image, projection=projection, world_from_probe=transpose(lookup_from_world),
-                       strength=strength, image_node=tex)
+    lookup_from_world, chain = _vector_chain(tex.inputs["Vector"], groups)
+    source = ProbeSource(image=tex.image, projection=projection, world_from_probe=transpose(lookup_from_world),
+                         strength=strength, image_node=tex, strength_socket=bg.inputs["Strength"])
+    if len(chain) == 1 and chain[0].bl_idname == "ShaderNodeMapping":
+        source.rotation_socket = chain[0].inputs["Rotation"]
+        source.rotation_inverted = chain[0].vector_type != "TEXTURE"
+    return source

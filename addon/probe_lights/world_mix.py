@@ -59,17 +59,26 @@ def insert_mix(world, keep_background=True, keep_reflections=True, keep_diffuse=
     surface = out.inputs["Surface"]
     original = surface.links[0].from_socket if surface.is_linked else None
 
+    # The added nodes go in a labelled frame below the user's nodes, ending under the output they feed.
+    user = [n for n in tree.nodes if not n.get(NODE_TAG)]
+    top = min((n.location.y - max(n.dimensions.y, 160.0) for n in user), default=out.location.y) - 80.0
+    frame = tree.nodes.new("NodeFrame")
+    frame[NODE_TAG] = 1
+    frame.label = "Probe Lights: the world's share after the bake (Restore world takes it out)"
+    frame.shrink = True
+    frame.location = (0.0, 0.0)
+    added = []
+
     def add(kind, dx, dy):
         node = tree.nodes.new(kind)
         node[NODE_TAG] = 1
-        node.location = (out.location.x + dx, out.location.y + dy)
+        node.location = (out.location.x + dx, top + dy)
         node.label = "Probe Lights"
+        added.append(node)
         return node
 
     mix = add("ShaderNodeMixShader", 0, 0)
     mix[MIX_TAG] = 1
-    out.location.x += 220  # make room; restored below
-    out[NODE_TAG + "_moved"] = 1
     dark = add("ShaderNodeBackground", -220, -160)
     dark.inputs["Strength"].default_value = 0.0
     dark.inputs["Color"].default_value = (0, 0, 0, 1)
@@ -79,10 +88,10 @@ def insert_mix(world, keep_background=True, keep_reflections=True, keep_diffuse=
     kept = [name for name, keep in (("Is Camera Ray", keep_background), ("Is Glossy Ray", keep_reflections),
                                     ("Is Diffuse Ray", keep_diffuse)) if keep]
     if kept:
-        path = add("ShaderNodeLightPath", -440, 200)
+        path = add("ShaderNodeLightPath", -660, 0)
         fac = path.outputs[kept[0]]
         for i, name in enumerate(kept[1:]):
-            m = add("ShaderNodeMath", -220, 200 - 120 * i)
+            m = add("ShaderNodeMath", -440, -120 * i)
             m.operation = "MAXIMUM"
             tree.links.new(fac, m.inputs[0])
             tree.links.new(path.outputs[name], m.inputs[1])
@@ -93,24 +102,26 @@ def insert_mix(world, keep_background=True, keep_reflections=True, keep_diffuse=
     tree.links.new(mix.outputs["Shader"], surface)
     if keep_reflections and not keep_diffuse:
         _eevee_output(tree, out, original, keep_background, add)
+    for node in added:
+        node.parent = frame  # keeps each node where it is
     return mix
 
 
 def _eevee_output(tree, out, original, keep_background, add):
     """A World Output for EEVEE only whose world is seen by the camera and lights nothing (see the module's doc)."""
-    eevee = add("ShaderNodeOutputWorld", 0, -300)
+    eevee = add("ShaderNodeOutputWorld", 220, -340)
     eevee[EEVEE_OUTPUT_TAG] = 1
     eevee.target = "EEVEE"
     if out.target == "ALL":  # the user's output stays the one Cycles uses; a new output node may have taken
         out.is_active_output = True  # the active flag
-    mix = add("ShaderNodeMixShader", -220, -300)
-    dark = add("ShaderNodeBackground", -440, -460)
+    mix = add("ShaderNodeMixShader", 0, -340)
+    dark = add("ShaderNodeBackground", -220, -500)
     dark.inputs["Strength"].default_value = 0.0
     tree.links.new(dark.outputs["Background"], mix.inputs[1])
     if original is not None:
         tree.links.new(original, mix.inputs[2])
     if keep_background:
-        path = add("ShaderNodeLightPath", -660, -300)
+        path = add("ShaderNodeLightPath", -660, -340)
         tree.links.new(path.outputs["Is Camera Ray"], mix.inputs["Fac"])
     else:
         mix.inputs["Fac"].default_value = 0.0
@@ -134,7 +145,7 @@ def remove_mix(world):
     for node in _tagged(tree):
         tree.nodes.remove(node)
     if out is not None:
-        if out.get(NODE_TAG + "_moved"):
+        if out.get(NODE_TAG + "_moved"):  # baked by version 0.1, which moved the output to make room
             out.location.x -= 220
             del out[NODE_TAG + "_moved"]
         if original is not None:

@@ -25,7 +25,7 @@ if [[ $(basename "$blender") == python* ]]; then
   command=("$blender" "$test")
   [[ -n $gl ]] && command=(xvfb-run -a -s "-screen 0 800x600x24" "${command[@]}")
 elif [[ -n $ui ]]; then
-  command=(xvfb-run -a -s "-screen 0 1280x1500x24" "$blender" --factory-startup -noaudio --enable-event-simulate --python "$test")
+  command=(xvfb-run -a -s "-screen 0 1920x1080x24" "$blender" --factory-startup -noaudio --enable-event-simulate --python "$test")
 elif [[ -n $gl ]]; then
   command=(xvfb-run -a -s "-screen 0 800x600x24" "$blender" -b --factory-startup -noaudio --python-exit-code 1
            --python "$test")

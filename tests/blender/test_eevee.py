@@ -31,7 +31,9 @@ def test_world_mix_in_eevee():
     b = render_scene.render()
     mix = next(n for n in world.node_tree.nodes if n.bl_idname == "ShaderNodeMixShader")
     original = mix.inputs[2].links[0].from_node
-    original.inputs["Strength"].default_value = 0.0  # the same suns, no world at all
+    # The same suns, no world at all: a black background colour (its strength would dim the suns too: they follow it).
+    world.node_tree.links.remove(original.inputs["Color"].links[0])
+    original.inputs["Color"].default_value = (0, 0, 0, 1)
     c = render_scene.render()
     ya, yb, yc = (x[..., :3] @ LUM for x in (a, b, c))
     objects = yc > 1e-3       # lit by the suns alone: the sphere and the plane

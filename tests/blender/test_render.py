@@ -41,8 +41,13 @@ def compare(probe, counts):
     noise = block_difference(world_lit, render())[0]  # the same world-lit render with other random numbers
     bpy.context.scene.cycles.seed = 1
     results = {"noise": noise}
+    cycles = bpy.context.scene.cycles
     for n in counts:
         assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=n) == {"FINISHED"}
+        # From Blender's default clamp, with the Cycles settings the add-on offers (the world's reference render
+        # above is unclamped).
+        cycles.sample_clamp_indirect = cycles.bl_rna.properties["sample_clamp_indirect"].default
+        assert bpy.ops.probe_lights.cycles_settings() == {"FINISHED"} and cycles.sample_clamp_indirect == 0.0
         light_lit = render()
         results[n] = block_difference(world_lit, light_lit)
         if ARGS.save and n == 64:
@@ -133,6 +138,17 @@ def test_light_units_in_cycles():
     scene.collection.objects.link(sun)
     baked = irradiance()
     assert abs(baked / 2.0 - 1) < 3e-3, baked
+    # The add-on draws its suns small (object scale 0.1, light_objects.SUN_SCALE) and parents them to a rig: the
+    # light must not change.
+    scale = harness.addon_module("light_objects").SUN_SCALE
+    holder = bpy.data.objects.new("rig", None)
+    scene.collection.objects.link(holder)
+    holder.location = (3, -2, 4)
+    sun.parent = holder
+    sun.scale = (scale, scale, scale)
+    scaled = irradiance()
+    print("  sun drawn at scale %g under a rig: %.4f of the same sun at scale 1" % (scale, scaled / baked))
+    assert abs(scaled / baked - 1) < 1e-3, (scaled, baked)
 
 
 harness.run([test_light_units_in_cycles, test_baked_lights_render_like_the_world])

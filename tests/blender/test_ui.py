@@ -1,5 +1,6 @@
 """The add-on with Blender's interface up (run under Xvfb by run.sh --ui): the Bake button's path (invoke), undo,
-the panel drawing in World properties, and a screenshot of it (saved with --save)."""
+the panel and the sidebar drawn at their default widths with nothing cut off, and screenshots of them (saved with
+--save)."""
 
 import os
 import sys
@@ -40,58 +41,145 @@ def test_button_bake_then_undo():
     with window_override():
         # As the Bake button calls it: invoke, and an undo step pushed (Python calls push none by default).
         assert bpy.ops.probe_lights.bake("INVOKE_DEFAULT", True) == {"FINISHED"}
-    assert len(light_objects.baked_lights(bpy.context.scene)) == 12  # the panel's count
+    assert len(light_objects.baked_lights(bpy.context.scene.world)) == 12  # the panel's count
     with window_override():
         assert bpy.ops.probe_lights.bake("INVOKE_DEFAULT", True, count=5) == {"FINISHED"}
-    assert len(light_objects.baked_lights(bpy.context.scene)) == 5  # an explicit count wins
+    assert len(light_objects.baked_lights(bpy.context.scene.world)) == 5  # an explicit count wins
     for i in range(2):
         with window_override():
             assert bpy.ops.ed.undo() == {"FINISHED"}, "undo %d" % (i + 1)
         yield  # let Blender's event loop run between undo steps, as between a user's key presses
     yield
     scene = bpy.context.scene
-    assert not light_objects.baked_lights(scene)
+    assert not light_objects.baked_lights(scene.world)
     assert harness.tree_snapshot(scene.world) == before
     with window_override():
         assert bpy.ops.ed.redo() == {"FINISHED"}
     yield
-    assert len(light_objects.baked_lights(bpy.context.scene)) == 12
+    assert len(light_objects.baked_lights(bpy.context.scene.world)) == 12
 
 
-def test_panel_draws_in_world_properties():
-    win = bpy.context.window_manager.windows[0]
-    bpy.ops.probe_lights.tradeoff()  # so the picture shows the accuracy-vs-time table too
-    # The largest area (the 3D view) becomes a Properties editor on the World tab: wide enough to read the panel.
-    area = max(win.screen.areas, key=lambda a: a.width * a.height)
-    area.type = "PROPERTIES"
-    yield
-    area.spaces[0].context = "WORLD"
+def _drawn(area, region_type="WINDOW"):
+    """Redraws `area` with the panel's draw wrapped: returns (calls, errors, lines that did not fit)."""
     from probe_lights import ui
     original, calls, errors = ui.draw_panel, [], []
 
     def checked(layout, context):
-        calls.append(1)
         try:
             original(layout, context)
+            calls.append((context.region.width, list(ui.OVERFLOW)))
         except Exception:
             errors.append(traceback.format_exc())
             raise
 
     ui.draw_panel = checked
+    return original, calls, errors
+
+
+def test_tradeoff_shows_progress_and_stops_on_escape():
+    """From the button the tradeoff runs one light count per step (the interface stays live, the status bar says
+    how far it is) and Esc stops it, keeping the counts measured so far."""
+    win = bpy.context.window_manager.windows[0]
+    settings = bpy.context.scene.probe_lights
+    with window_override():
+        assert bpy.ops.probe_lights.tradeoff("INVOKE_DEFAULT") == {"RUNNING_MODAL"}
+    for _ in range(50):
+        yield
+        if len({r.lights for r in settings.tradeoff}) >= 2:
+            break
+    measured = len({r.lights for r in settings.tradeoff})
+    assert 2 <= measured < 7, measured
+    win.event_simulate(type="ESC", value="PRESS")
+    win.event_simulate(type="ESC", value="RELEASE")
+    for _ in range(5):
+        yield
+    stopped = len({r.lights for r in settings.tradeoff})
+    for _ in range(5):
+        yield
+    assert len({r.lights for r in settings.tradeoff}) == stopped < 7, "Esc did not stop the tradeoff"
+    print("  tradeoff stopped by Esc after %d of 7 light counts" % stopped)
+    with window_override():
+        assert bpy.ops.probe_lights.tradeoff("INVOKE_DEFAULT") == {"RUNNING_MODAL"}
+    for _ in range(100):
+        yield
+        if len({r.lights for r in settings.tradeoff}) == 7:
+            break
+    assert len({r.lights for r in settings.tradeoff}) == 7
+
+
+def test_panel_fits_the_default_width():
+    """The World properties panel, in the default layout's Properties editor at its default width, after a bake
+    with warnings and a tradeoff: no line, button or number is cut off (every label is measured in the interface
+    font against the region; buttons have short labels). The screenshot is saved with --save."""
+    from probe_lights import ui
+    win = bpy.context.window_manager.windows[0]
+    scene = bpy.context.scene
+    scene.render.engine = "CYCLES"
+    scene.cycles.sample_clamp_indirect = 10.0  # Blender's default: the panel shows the Cycles offer
+    with window_override():
+        assert bpy.ops.probe_lights.bake("INVOKE_DEFAULT", True, count=128) == {"FINISHED"}
+    yield
+    area = next(a for a in win.screen.areas if a.type == "PROPERTIES")
+    area.spaces[0].context = "WORLD"
+    original, calls, errors = _drawn(area)
     try:
-        area.tag_redraw()
         for _ in range(3):
-            yield  # the editor redraws in the event loop
+            area.tag_redraw()
+            yield
         with bpy.context.temp_override(window=win, area=area):
             bpy.ops.wm.redraw_timer(type="DRAW_WIN_SWAP", iterations=1)
         yield
     finally:
         ui.draw_panel = original
-    assert calls, "the World properties panel was never drawn"
     assert not errors, errors[0]
+    assert calls, "the World properties panel was never drawn"
+    width, overflow = calls[-1]
+    print("  Properties editor: %d px wide (window %d px), %d lines cut" % (width, win.width, len(overflow)))
+    assert not overflow, overflow
+    assert scene.probe_lights.last_warnings, "the bake had warnings to show"
     if ARGS.save:
+        # Scrolled down to the panel (the editor shows the world's other panels above it), as a user would.
+        region = next(r for r in area.regions if r.type == "WINDOW")
+        x, y = region.x + region.width // 2, region.y + region.height // 2
+        win.event_simulate(type="MOUSEMOVE", value="NOTHING", x=x, y=y)
+        for _ in range(12):
+            win.event_simulate(type="WHEELDOWNMOUSE", value="PRESS", x=x, y=y)
+            yield
         with bpy.context.temp_override(window=win, area=area):
             bpy.ops.screen.screenshot_area(filepath=os.path.join(os.path.abspath(ARGS.save), "panel.png"))
+
+
+def test_sidebar_fits_its_default_width():
+    from probe_lights import ui
+    win = bpy.context.window_manager.windows[0]
+    area = next(a for a in win.screen.areas if a.type == "VIEW_3D")
+    area.spaces[0].show_region_ui = True
+    yield
+    region = next(r for r in area.regions if r.type == "UI")
+    original, calls, errors = _drawn(area, "UI")
+    try:
+        # The sidebar shows one tab at a time: click the Probe Lights tab as a user would (tabs run down the
+        # sidebar's right edge; the test tries each until the panel draws).
+        for y in range(region.y + region.height - 30, region.y + 30, -25):
+            if calls:
+                break
+            x = region.x + region.width - 8
+            win.event_simulate(type="MOUSEMOVE", value="NOTHING", x=x, y=y)
+            win.event_simulate(type="LEFTMOUSE", value="PRESS", x=x, y=y)
+            win.event_simulate(type="LEFTMOUSE", value="RELEASE", x=x, y=y)
+            area.tag_redraw()
+            yield
+            yield
+    finally:
+        ui.draw_panel = original
+    assert not errors, errors[0]
+    assert calls, "the sidebar's Probe Lights tab never drew"
+    width, overflow = calls[-1]
+    print("  sidebar: %d px wide, %d lines cut" % (width, len(overflow)))
+    if ARGS.save:
+        with bpy.context.temp_override(window=win, area=area):
+            bpy.ops.screen.screenshot_area(filepath=os.path.join(os.path.abspath(ARGS.save), "sidebar.png"))
+    assert not overflow, overflow
 
 
 def steps():
@@ -103,7 +191,8 @@ def steps():
     win.event_simulate(type="ESC", value="RELEASE")
     yield
     harness.install_addon(ARGS.zip)
-    for test in (test_button_bake_then_undo, test_panel_draws_in_world_properties):
+    for test in (test_button_bake_then_undo, test_tradeoff_shows_progress_and_stops_on_escape,
+                 test_panel_fits_the_default_width, test_sidebar_fits_its_default_width):
         try:
             result = test()
             if result is not None:

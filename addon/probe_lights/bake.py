@@ -1,0 +1,154 @@
+"""What a click does, apart from the operators that call it: read (or render) a world's probe, bake it, make its
+lamps and mix, and take them out again. The operators (operators.py) only pass settings in and report.
+
+    world --world_graph.find_probe--> image pixels | rendered world (world_image.py)
+          --native.bake--> lights + estimated errors
+          --light_objects.make_lights--> the world's lamp collection (rig, drivers)
+          --world_mix.insert_mix--> the world keeps only what the lamps do not replace
+"""
+
+import time
+
+import bpy
+import numpy as np
+
+from . import cycles_settings, native, render_cost
+from .errors import ProbeError
+from .light_objects import baked_worlds, make_lights, remove_collection_if_empty, remove_lights, world_collection
+from .world_graph import find_probe
+from .world_image import image_pixels, render_world
+from .world_mix import insert_mix, remove_mix
+
+RENDER_WIDTH = 1024  # lat-long width a world without a readable image is rendered at
+IMAGE_KEY = "probe_lights_image"  # on a baked world: the image it was baked from (a re-bake is suggested if it changes)
+LUM = np.array([0.2126, 0.7152, 0.0722])
+
+
+def _rendered_probe(world):
+    """Renders a copy of the world without our mix (so a re-bake sees the world as the user made it)."""
+    copy = world.copy()
+    try:
+        remove_mix(copy)
+        return render_world(copy, RENDER_WIDTH)
+    finally:
+        bpy.data.worlds.remove(copy)
+
+
+def world_probe(world):
+    """The world's probe: (pixels, projection, a description, the ProbeSource, warnings). Read from its image where
+    the rules of world_graph.py find one, else rendered (on a copy: the world itself is not touched)."""
+    if world is None:
+        raise ProbeError("the scene has no world: add one in World properties")
+    try:
+        source = find_probe(world, bpy.app.version)
+    except ValueError as e:
+        raise ProbeError(str(e))
+    if source.image is None:
+        return _rendered_probe(world), "latlong", "rendered world (%s)" % source.render_reason, source, []
+    pixels = image_pixels(source.image)
+    warnings = []
+    h, w = pixels.shape[:2]
+    if source.projection == "latlong" and abs(w - 2 * h) > 1:
+        warnings.append("image '%s' is %dx%d, not 2:1: baked as Equirectangular as the world says, but it may be "
+                        "another projection" % (source.image.name, w, h))
+    if source.projection == "mirror-ball" and w != h:
+        warnings.append("image '%s' is %dx%d, not square: a mirror ball image usually is" % (source.image.name, w, h))
+    return pixels, source.projection, "image '%s' (%s)" % (source.image.name, source.projection), source, warnings
+
+
+def _native_warning(note):
+    return not note.startswith("auto count:")
+
+
+def bake_world(context, settings, progress=lambda fraction: None):
+    """Bakes the scene's world with `settings` (anything with the properties.bake_settings() attributes). Returns a
+    summary: count, energy, ms, timings, source, notes, warnings, errors."""
+    scene = context.scene
+    world = scene.world
+    start = time.perf_counter()
+    pixels, projection, described, source, warnings = world_probe(world)
+    probe_ms = 1000 * (time.perf_counter() - start)
+    progress(0.5)
+    # The errors are estimated on the probe grouped to 512 pixels wide: ~50 ms at any probe size.
+    max_error = settings.max_error / 100.0 if settings.count_mode == "TOLERANCE" else 0.0
+    baked = native.bake(pixels, projection=projection, method=settings.method, lights=settings.count,
+                        resolution=settings.resolution, evaluate=True, effects="diffuse,shadow",
+                        evaluator_width=512, refit=settings.refit, move_directions=settings.refit,
+                        max_error=max_error, nonfinite=settings.non_finite)
+    bake_done = time.perf_counter()
+    progress(0.8)
+    lights = make_lights(scene, world, baked, source, settings.light_type, settings.soft_shadows, settings.distance,
+                         lights_diffuse=settings.replace_diffuse, lights_glossy=settings.replace_reflections)
+    insert_mix(world, keep_background=not settings.replace_background,
+               keep_reflections=not settings.replace_reflections, keep_diffuse=not settings.replace_diffuse)
+    if source.image is not None:
+        world[IMAGE_KEY] = source.image.name
+    elif IMAGE_KEY in world:
+        del world[IMAGE_KEY]
+    context.view_layer.update()  # drivers and the rig put the lamps where they shine from
+    lamps_ms = 1000 * (time.perf_counter() - bake_done)
+    notes = [n for n in baked["notes"] if not _native_warning(n)]
+    warnings += [n for n in baked["notes"] if _native_warning(n)]
+    offer = cycles_settings.advice(scene, len(lights))
+    if offer:
+        warnings.append(offer + " (Use Cycles settings for lamps in the panel)")
+    noise = cycles_settings.noise_note(scene, len(lights))
+    if noise:
+        warnings.append(noise)
+    if scene.render.engine == "CYCLES" and settings.light_type == "SUN":
+        advice = render_cost.count_note(len(lights), bpy.app.version)
+        if advice:
+            warnings.append(advice)
+    total = float(np.dot(baked["total_rgb"], LUM))
+    captured = float(np.sum(baked["rgb"] @ LUM))
+    errors = baked.get("errors", {})
+    return {"count": len(lights), "energy": 100.0 * captured / total if total > 0 else 0.0,
+            "ms": 1000.0 * (time.perf_counter() - start),
+            "timings": {"probe": probe_ms, "bake": 1000 * (bake_done - start) - probe_ms, "lamps": lamps_ms},
+            "source": described, "notes": notes, "warnings": warnings,
+            "diffuse_error": 100.0 * errors.get("diffuse", -0.01), "shadow_error": 100.0 * errors.get("shadow", -0.01)}
+
+
+def report_lines(summary):
+    """The bake's reports, [(type, text)]: one WARNING per warning, then the summary line (last: the status bar shows
+    it), which carries the count, the estimated errors and the warnings."""
+    line = "Baked %d lights from %s in %.0f ms; estimated error: diffuse %.2f %%, shadow %.2f %%" % (
+        summary["count"], summary["source"], summary["ms"], summary["diffuse_error"], summary["shadow_error"])
+    warnings = summary["warnings"]
+    if not warnings:
+        return [("INFO", line)]
+    return [("WARNING", w) for w in warnings] + [("WARNING", line + "; warning: " + "; ".join(warnings))]
+
+
+def image_changed(world):
+    """The name of the image the world now reads if it differs from the one it was baked from, else ''."""
+    baked_from = world.get(IMAGE_KEY) if world is not None else None
+    if not baked_from:
+        return ""
+    source = find_probe(world, bpy.app.version)
+    now = source.image.name if source.image is not None else "a rendered world"
+    return now if now != baked_from else ""
+
+
+def restore_world(scene, world):
+    """Takes `world`'s lamps, mix and records out; its collection goes when empty; the Cycles settings the add-on
+    set go back once no baked world is left in the scene. Returns a one-line summary ('' if nothing was baked)."""
+    if world is None:
+        return ""
+    removed = remove_lights(world)
+    restored = remove_mix(world)
+    collection_gone = remove_collection_if_empty(world)
+    if IMAGE_KEY in world:
+        del world[IMAGE_KEY]
+    cycles = []
+    if not any(world_collection(w) is not None and scene.user_of_id(world_collection(w)) for w in baked_worlds()):
+        cycles = cycles_settings.restore(scene)
+    if not (removed or restored or collection_gone or cycles):
+        return ""
+    parts = ["removed %d lights" % removed]
+    if restored:
+        parts.append("restored world '%s'" % world.name)
+    if cycles:
+        parts.append("Cycles %s back" % " and ".join(c.replace("sample_clamp_indirect", "indirect clamp")
+                                                     .replace("use_light_tree", "light tree") for c in cycles))
+    return ", ".join(parts)

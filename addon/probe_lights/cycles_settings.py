@@ -1,0 +1,95 @@
+"""Cycles settings the baked lamps need, offered and reversible.
+
+Cycles' default indirect clamp (10) cuts the bright bounce paths a sun makes, so bounce light under baked suns
+renders darker than under the world; Blender 4.0+ picks among many lamps with its light tree (3.x has none: many
+lamps get noisy, render_cost.py). The panel says what the scene's settings cost (measured with
+scripts/bench_cycles_settings.py) and offers one click that sets them; the values it replaced are kept on the scene
+and put back by Restore world (when no baked world of the scene is left).
+"""
+
+import bpy
+
+from .render_cost import measured_version
+
+BEFORE_KEY = "probe_lights_cycles_before"  # on the scene: the settings the offer replaced
+
+# Measured with scripts/bench_cycles_settings.py (sphere over plane, 4 bounces, 128x96), per Blender version:
+#   darkening: how much darker 64 baked suns render with the default indirect clamp (10) than unclamped, worst
+#     of noon_grass, thatch_chapel, KernerEnvLatLong and pmndrs_esplanade (256 samples; 5.x: noon_grass only);
+#   noise: 64 suns' noise at 64 samples as a multiple of the world-lit render's (8x8-block means, noon_grass).
+# 3.4 picks lamps without a light tree: the clamp cuts the rare, bright sun samples. 4.5+ (light tree): no effect.
+MEASURED = {
+    (3, 4, 1): {"darkening": 3.0, "noise": 19.0},
+    (4, 5, 15): {"darkening": 0.0, "noise": 2.0},
+    (5, 0, 1): {"darkening": 0.0, "noise": 2.0},
+    (5, 2, 3): {"darkening": 0.0, "noise": 2.0},
+}
+MATTERS = 0.5  # percent: a darkening below this is not worth a word
+
+
+def _wanted(scene):
+    """{setting: value} for what the lamps need that the scene does not have: no indirect clamp, and the light tree
+    where the version has one."""
+    cycles = getattr(scene, "cycles", None)
+    if cycles is None:
+        return {}
+    wanted = {}
+    if cycles.sample_clamp_indirect > 0:
+        wanted["sample_clamp_indirect"] = 0.0
+    if hasattr(cycles, "use_light_tree") and not cycles.use_light_tree:
+        wanted["use_light_tree"] = True
+    return wanted
+
+
+def advice(scene, lamps):
+    """One line on what the scene's Cycles settings cost the baked lamps, with this version's measured figures, or
+    '' when the settings cost nothing measurable."""
+    if scene.render.engine != "CYCLES" or lamps < 2:
+        return ""
+    wanted = _wanted(scene)
+    version = measured_version(bpy.app.version)
+    measured = MEASURED.get(version, MEASURED[(4, 5, 15)])
+    named = ".".join(map(str, version))
+    parts = []
+    if "sample_clamp_indirect" in wanted and measured["darkening"] >= MATTERS:
+        parts.append("the indirect clamp (%g) darkens the lamps' bounce light: 64 suns rendered up to %.1f %% darker "
+                     "in Blender %s" % (scene.cycles.sample_clamp_indirect, measured["darkening"], named))
+    if "use_light_tree" in wanted:
+        parts.append("the light tree is off: without one, 64 suns rendered %.0fx the world's noise (Blender 3.4.1)" %
+                     MEASURED[(3, 4, 1)]["noise"])
+    return "Cycles: " + "; ".join(parts) if parts else ""
+
+
+def noise_note(scene, lamps):
+    """Cycles without a light tree (3.x) samples many lamps noisily, which no setting cures: one line, or ''."""
+    cycles = getattr(scene, "cycles", None)
+    if scene.render.engine != "CYCLES" or cycles is None or hasattr(cycles, "use_light_tree") or lamps < 32:
+        return ""
+    return ("Cycles %s has no light tree: at 64 samples, 64 suns rendered %.0fx the world's noise (measured); "
+            "use fewer lamps or more samples" % (".".join(map(str, bpy.app.version)),
+                                                 MEASURED[(3, 4, 1)]["noise"]))
+
+
+def apply(scene):
+    """Sets what the lamps need, remembering what it replaced (once: a second click keeps the first values)."""
+    wanted = _wanted(scene)
+    before = dict(scene.get(BEFORE_KEY, {}))
+    for name, value in wanted.items():
+        before.setdefault(name, getattr(scene.cycles, name))
+        setattr(scene.cycles, name, value)
+    if before:
+        scene[BEFORE_KEY] = before
+    return sorted(wanted)
+
+
+def restore(scene):
+    """Puts back what apply() replaced. Returns the names restored."""
+    before = scene.get(BEFORE_KEY)
+    if not before:
+        return []
+    names = []
+    for name, value in before.to_dict().items() if hasattr(before, "to_dict") else before.items():
+        setattr(scene.cycles, name, bool(value) if name == "use_light_tree" else float(value))
+        names.append(name)
+    del scene[BEFORE_KEY]
+    return names

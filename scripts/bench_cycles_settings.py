@@ -1,0 +1,82 @@
+"""What Cycles' default settings do to baked lamps, per Blender version: the sphere-over-plane scene of the render
+test (bounce light included, 4 bounces) lit by the world (unclamped: the reference) and by N baked suns, with
+Cycles' default indirect clamp and with the settings the add-on offers (clamp 0, light tree where there is one).
+Prints the mean brightness of the lit pixels relative to the world's and the 8x8-block difference. The figures the
+panel quotes (cycles_settings.py) come from here:
+
+    tests/blender/run.sh blender scripts/bench_cycles_settings.py build/probe_lights.zip ../shared [PROBE] [SAMPLES]
+"""
+import os
+import sys
+
+import bpy
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "tests", "blender"))
+import harness  # noqa: E402
+import render_scene  # noqa: E402
+
+argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+zip_path = argv[argv.index("--zip") + 1]
+rest = [a for i, a in enumerate(argv) if not a.startswith("--") and (i == 0 or not argv[i - 1].startswith("--"))]
+probe = rest[0] if rest else harness.BUNDLED_PROBE
+samples = int(rest[1]) if len(rest) > 1 else 256
+
+harness.install_addon(zip_path)
+harness.empty_scene()
+harness.env_world(bpy.data.images.load(probe))
+render_scene.sphere_over_plane(128, 96, samples)
+scene = bpy.context.scene
+default_clamp = scene.cycles.bl_rna.properties["sample_clamp_indirect"].default
+
+
+def brightness(reference, pixels):
+    lit = (reference[..., 3] > 0.999) & (reference[..., :3] @ render_scene.LUM > 0)
+    return float((pixels[lit, :3] @ render_scene.LUM).mean() / (reference[lit, :3] @ render_scene.LUM).mean())
+
+
+reference = render_scene.render()
+print("CYCLES Blender %s, %s, %d spp, 128x96, default indirect clamp %g" % (
+    bpy.app.version_string, os.path.basename(probe), samples, default_clamp))
+scene.cycles.sample_clamp_indirect = default_clamp
+world_default = render_scene.render()
+print("CYCLES world, default clamp: brightness %.4f, difference %.2f %%" % (
+    brightness(reference, world_default), 100 * render_scene.block_difference(reference, world_default)[0]))
+for n in (16, 64):
+    bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=n)
+    scene.cycles.sample_clamp_indirect = default_clamp
+    if hasattr(scene.cycles, "use_light_tree"):
+        scene.cycles.use_light_tree = scene.cycles.bl_rna.properties["use_light_tree"].default
+    plain = render_scene.render()
+    assert bpy.ops.probe_lights.cycles_settings() == {"FINISHED"}
+    offered = render_scene.render()
+    for name, pixels in (("default settings", plain), ("offered settings", offered)):
+        print("CYCLES %3d suns, %s: brightness %.4f, difference %.2f %%" % (
+            n, name, brightness(reference, pixels), 100 * render_scene.block_difference(reference, pixels)[0]),
+            flush=True)
+    bpy.ops.probe_lights.restore()
+
+# Noise at a low sample count: the difference between two renders that differ only in their seed, over sqrt(2).
+scene.cycles.samples = 64
+for n in (0, 16, 64):
+    if n:
+        bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=n)
+        bpy.ops.probe_lights.cycles_settings()
+    scene.cycles.seed = 1
+    a = render_scene.render()
+    scene.cycles.seed = 2
+    b = render_scene.render()
+    print("CYCLES noise at 64 spp, %s: %.1f %%" % ("%d suns" % n if n else "world", 100 * render_scene.block_difference(a, b)[0] / 2 ** 0.5), flush=True)
+    if n:
+        bpy.ops.probe_lights.restore()
+if hasattr(scene.cycles, "use_light_tree"):
+    bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=64)
+    bpy.ops.probe_lights.cycles_settings()
+    scene.cycles.use_light_tree = False
+    scene.cycles.seed = 1
+    a = render_scene.render()
+    scene.cycles.seed = 2
+    b = render_scene.render()
+    print("CYCLES noise at 64 spp, 64 suns, light tree off: %.1f %%" % (
+        100 * render_scene.block_difference(a, b)[0] / 2 ** 0.5), flush=True)
