@@ -25,18 +25,23 @@ LUM = np.array([0.2126, 0.7152, 0.0722])
 
 
 def _rendered_probe(world):
-    """Renders a copy of the world without our mix (so a re-bake sees the world as the user made it)."""
-    copy = world.copy()
+    """The world rendered to a lat-long image now (blocking; the world itself is not touched)."""
+    return render_world(world, RENDER_WIDTH)
+
+
+def needs_render(world):
+    """Why the world has to be rendered rather than read (one line), or '' when its image is read directly."""
     try:
-        remove_mix(copy)
-        return render_world(copy, RENDER_WIDTH)
-    finally:
-        bpy.data.worlds.remove(copy)
+        source = find_probe(world, bpy.app.version)
+    except ValueError:
+        return ""
+    return source.render_reason if source.image is None else ""
 
 
-def world_probe(world):
+def world_probe(world, rendered=None):
     """The world's probe: (pixels, projection, a description, the ProbeSource, warnings). Read from its image where
-    the rules of world_graph.py find one, else rendered (on a copy: the world itself is not touched)."""
+    the rules of world_graph.py find one, else rendered (on a copy: the world itself is not touched); `rendered`:
+    pixels already rendered by a WorldRender job."""
     if world is None:
         raise ProbeError("the scene has no world: add one in World properties")
     try:
@@ -44,7 +49,8 @@ def world_probe(world):
     except ValueError as e:
         raise ProbeError(str(e))
     if source.image is None:
-        return _rendered_probe(world), "latlong", "rendered world (%s)" % source.render_reason, source, []
+        pixels = rendered if rendered is not None else _rendered_probe(world)
+        return pixels, "latlong", "rendered world (%s)" % source.render_reason, source, []
     pixels = image_pixels(source.image)
     warnings = []
     h, w = pixels.shape[:2]
@@ -60,13 +66,14 @@ def _native_warning(note):
     return not note.startswith("auto count:")
 
 
-def bake_world(context, settings, progress=lambda fraction: None):
+def bake_world(context, settings, progress=lambda fraction: None, rendered=None, render_ms=0.0):
     """Bakes the scene's world with `settings` (anything with the properties.bake_settings() attributes). Returns a
-    summary: count, energy, ms, timings, source, notes, warnings, errors."""
+    summary: count, energy, ms, timings, source, notes, warnings, errors. `rendered`: the world's pixels from a
+    WorldRender job that took `render_ms`."""
     scene = context.scene
     world = scene.world
-    start = time.perf_counter()
-    pixels, projection, described, source, warnings = world_probe(world)
+    start = time.perf_counter() - render_ms / 1000
+    pixels, projection, described, source, warnings = world_probe(world, rendered)
     probe_ms = 1000 * (time.perf_counter() - start)
     progress(0.5)
     # The errors are estimated on the probe grouped to 512 pixels wide: ~50 ms at any probe size.

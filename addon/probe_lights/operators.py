@@ -6,9 +6,10 @@ import time
 import bpy
 
 from . import cycles_settings, native
-from .bake import bake_world, report_lines, restore_world, world_probe
+from .bake import RENDER_WIDTH, bake_world, needs_render, report_lines, restore_world, world_probe
 from .errors import ProbeError
 from .properties import SETTING_NAMES, bake_settings
+from .world_image import WorldRender
 
 TRADEOFF_COUNTS = [4, 8, 16, 32, 64, 128, 256]
 LAMP_MS = 0.3  # making one lamp with its drivers, before any bake measured it (Blender 3.4 and 4.5: 0.2-0.3 ms)
@@ -28,13 +29,49 @@ class PROBE_LIGHTS_OT_bake(bpy.types.Operator):
         for name in SETTING_NAMES:
             if not self.properties.is_property_set(name):
                 setattr(self, name, getattr(settings, name))
-        return self.execute(context)
+        world = context.scene.world
+        if world is None or context.window is None or not needs_render(world):
+            return self.execute(context)
+        # A world that has to be rendered first (Sky Texture, ...): Blender's render job, with its progress in the
+        # status bar and Esc to cancel; the bake follows when it completes.
+        self._render = WorldRender(world, RENDER_WIDTH)
+        self._started = time.perf_counter()
+        self._render.start(context)
+        if self._render.state() != "running":
+            self._render.close()
+            self.report({"ERROR"}, "could not start rendering the world")
+            return {"CANCELLED"}
+        self._timer = context.window_manager.event_timer_add(0.1, window=context.window)
+        context.window_manager.modal_handler_add(self)
+        return {"RUNNING_MODAL"}
+
+    def modal(self, context, event):
+        if event.type == "ESC" and event.value == "PRESS":
+            # Blender's own Esc stops the render job; the bake is called off whether or not it did.
+            self._called_off = True
+            return {"RUNNING_MODAL"}
+        state = self._render.state()
+        if state == "running":
+            return {"PASS_THROUGH"}
+        context.window_manager.event_timer_remove(self._timer)
+        try:
+            if state != "done" or getattr(self, "_called_off", False):
+                self.report({"WARNING"}, "Bake cancelled while rendering the world: nothing changed")
+                return {"CANCELLED"}
+            pixels = self._render.pixels()
+        finally:
+            self._render.close()
+        return self._bake(context, pixels, 1000 * (time.perf_counter() - self._started))
 
     def execute(self, context):
+        return self._bake(context)
+
+    def _bake(self, context, rendered=None, render_ms=0.0):
         wm = context.window_manager
         wm.progress_begin(0, 100)
         try:
-            summary = bake_world(context, self, progress=lambda f: wm.progress_update(int(100 * f)))
+            summary = bake_world(context, self, progress=lambda f: wm.progress_update(int(100 * f)),
+                                 rendered=rendered, render_ms=render_ms)
         except ProbeError as e:
             self.report({"ERROR"}, str(e))
             return {"CANCELLED"}

@@ -32,20 +32,28 @@ def image_pixels(image):
     return pixels
 
 
-def render_world(world, width=1024, samples=16):
-    """Renders `world` to a lat-long float image with a Cycles panoramic camera in a temporary empty scene.
+class WorldRender:
+    """Renders `world` (a copy of it, without the add-on's mix) to a lat-long float image with a Cycles panoramic
+    camera in a temporary empty scene: blocking (render()), or as Blender's render job (start(): the status bar
+    shows its progress and Esc cancels it; poll state()). close() removes everything it made.
 
     The camera at the origin with rotation (90, 0, -90) degrees maps its equirectangular image exactly onto the
-    lat-long convention (checked by tests/blender/test_world.py with a single bright pixel)."""
-    height = max(1, width // 2)
-    scene = bpy.data.scenes.new("probe_lights world render")
-    cam_data = bpy.data.cameras.new("probe_lights panorama")
-    cam = bpy.data.objects.new("probe_lights panorama", cam_data)
-    fd, path = tempfile.mkstemp(suffix=".exr", prefix="probe_lights_world_")
-    os.close(fd)
-    image = None
-    try:
-        scene.world = world
+    lat-long convention (checked by tests/blender/test_addon.py against the image read directly)."""
+
+    def __init__(self, world, width=1024, samples=16):
+        from .world_mix import remove_mix
+        self.width, self.height = width, max(1, width // 2)
+        self.world = world.copy()
+        remove_mix(self.world)  # a re-bake sees the world as the user made it
+        self.scene = bpy.data.scenes.new("probe_lights world render")
+        self.cam_data = bpy.data.cameras.new("probe_lights panorama")
+        self.cam = bpy.data.objects.new("probe_lights panorama", self.cam_data)
+        fd, self.path = tempfile.mkstemp(suffix=".exr", prefix="probe_lights_world_")
+        os.close(fd)
+        self._state = "ready"
+        self._display = None
+        scene, cam_data, cam = self.scene, self.cam_data, self.cam
+        scene.world = self.world
         cam_data.type = "PANO"
         if hasattr(cam_data, "panorama_type"):  # Blender 4.0+
             cam_data.panorama_type = "EQUIRECTANGULAR"
@@ -56,28 +64,82 @@ def render_world(world, width=1024, samples=16):
         scene.camera = cam
         r = scene.render
         r.engine = "CYCLES"
-        r.resolution_x, r.resolution_y, r.resolution_percentage = width, height, 100
+        r.resolution_x, r.resolution_y, r.resolution_percentage = self.width, self.height, 100
         r.film_transparent = False
         r.use_compositing = False
         r.use_sequencer = False
         r.image_settings.file_format = "OPEN_EXR"
         r.image_settings.color_depth = "32"
-        r.filepath = path
+        r.filepath = self.path
         scene.cycles.samples = samples
         scene.cycles.use_denoising = False
         scene.cycles.device = "CPU"
-        bpy.ops.render.render(write_still=True, scene=scene.name)
-        image = bpy.data.images.load(path)
-        pixels = np.empty(width * height * image.channels, dtype=np.float32)
-        image.pixels.foreach_get(pixels)
-        return np.ascontiguousarray(pixels.reshape(height, width, image.channels)[::-1])
-    finally:
-        if image is not None:
-            bpy.data.images.remove(image)
-        bpy.data.objects.remove(cam)
-        bpy.data.cameras.remove(cam_data)
-        bpy.data.scenes.remove(scene)
+
+    def render(self):
+        """Renders now (blocking) and returns the pixels."""
+        bpy.ops.render.render(write_still=True, scene=self.scene.name)
+        self._state = "done"
+        return self.pixels()
+
+    def start(self, context):
+        """Starts Blender's render job (needs a window). The render view does not open: Blender's display
+        preference is set to none while the job runs and put back by close()."""
+        bpy.app.handlers.render_complete.append(self._complete)
+        bpy.app.handlers.render_cancel.append(self._cancel)
+        view = context.preferences.view
+        self._display = view.render_display_type
+        view.render_display_type = "NONE"
+        self._state = "running"
+        result = bpy.ops.render.render("INVOKE_DEFAULT", write_still=True, scene=self.scene.name)
+        if "RUNNING_MODAL" not in result:
+            self._state = "cancelled"
+
+    def _complete(self, scene, *args):
+        if scene == self.scene:
+            self._state = "done"
+
+    def _cancel(self, scene, *args):
+        if scene == self.scene:
+            self._state = "cancelled"
+
+    def state(self):
+        """'ready', 'running', 'done' or 'cancelled'."""
+        return self._state
+
+    def pixels(self):
+        image = bpy.data.images.load(self.path)
         try:
-            os.remove(path)
+            w, h = image.size[:]
+            pixels = np.empty(w * h * image.channels, dtype=np.float32)
+            image.pixels.foreach_get(pixels)
+            return np.ascontiguousarray(pixels.reshape(h, w, image.channels)[::-1])
+        finally:
+            bpy.data.images.remove(image)
+
+    def close(self):
+        for handlers, f in ((bpy.app.handlers.render_complete, self._complete),
+                            (bpy.app.handlers.render_cancel, self._cancel)):
+            if f in handlers:
+                handlers.remove(f)
+        if self._display is not None:
+            bpy.context.preferences.view.render_display_type = self._display
+            self._display = None
+        for remove, item in ((bpy.data.objects.remove, self.cam), (bpy.data.cameras.remove, self.cam_data),
+                             (bpy.data.scenes.remove, self.scene), (bpy.data.worlds.remove, self.world)):
+            try:
+                remove(item)
+            except ReferenceError:
+                pass
+        try:
+            os.remove(self.path)
         except OSError:
             pass
+
+
+def render_world(world, width=1024, samples=16):
+    """The world's pixels, rendered now (blocking): see WorldRender."""
+    job = WorldRender(world, width, samples)
+    try:
+        return job.render()
+    finally:
+        job.close()

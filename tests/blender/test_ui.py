@@ -76,6 +76,56 @@ def _drawn(area, region_type="WINDOW"):
     return original, calls, errors
 
 
+def sky_world():
+    import math
+    world = bpy.data.worlds.new("sky")
+    bpy.context.scene.world = world
+    harness.use_nodes(world)
+    sky = world.node_tree.nodes.new("ShaderNodeTexSky")
+    harness.sky_type(sky)
+    sky.sun_elevation = math.radians(35)
+    world.node_tree.links.new(sky.outputs["Color"], world.node_tree.nodes["Background"].inputs["Color"])
+    return world
+
+
+def test_a_rendered_world_bakes_as_a_render_job_that_escape_cancels():
+    """A Sky Texture world is rendered by Blender's render job (progress in the status bar, the interface live);
+    Esc cancels it and nothing changes; left alone, the bake follows the render."""
+    from probe_lights import light_objects
+    win = bpy.context.window_manager.windows[0]
+    previous = bpy.context.scene.world
+    world = sky_world()
+    before = harness.tree_snapshot(world)
+    scenes = len(bpy.data.scenes)
+    with window_override():
+        assert bpy.ops.probe_lights.bake("INVOKE_DEFAULT", True, count=8) == {"RUNNING_MODAL"}
+    yield
+    win.event_simulate(type="ESC", value="PRESS")
+    win.event_simulate(type="ESC", value="RELEASE")
+    for _ in range(40):
+        yield
+        if len(bpy.data.scenes) == scenes:
+            break
+    world = bpy.context.scene.world
+    assert len(bpy.data.scenes) == scenes, "the render's scene is left over"
+    assert not light_objects.baked_lights(world), "the bake went on after Esc"
+    assert harness.tree_snapshot(world) == before, (harness.tree_snapshot(world), before)
+    assert bpy.context.preferences.view.render_display_type != "NONE", "the display preference was not put back"
+    with window_override():
+        assert bpy.ops.probe_lights.bake("INVOKE_DEFAULT", True, count=8) == {"RUNNING_MODAL"}
+    for _ in range(200):
+        yield
+        if light_objects.baked_lights(bpy.context.scene.world):
+            break
+    world = bpy.context.scene.world
+    assert len(light_objects.baked_lights(world)) == 8, "the bake did not follow the render"
+    assert bpy.context.scene.probe_lights.last_source.startswith("rendered world")
+    assert len(bpy.data.scenes) == scenes
+    print("  rendered world: cancelled by Esc, then baked in %.0f ms" % bpy.context.scene.probe_lights.last_ms)
+    bpy.ops.probe_lights.restore()
+    bpy.context.scene.world = previous
+
+
 def test_tradeoff_shows_progress_and_stops_on_escape():
     """From the button the tradeoff runs one light count per step (the interface stays live, the status bar says
     how far it is) and Esc stops it, keeping the counts measured so far."""
@@ -191,7 +241,8 @@ def steps():
     win.event_simulate(type="ESC", value="RELEASE")
     yield
     harness.install_addon(ARGS.zip)
-    for test in (test_button_bake_then_undo, test_tradeoff_shows_progress_and_stops_on_escape,
+    for test in (test_button_bake_then_undo, test_a_rendered_world_bakes_as_a_render_job_that_escape_cancels,
+                 test_tradeoff_shows_progress_and_stops_on_escape,
                  test_panel_fits_the_default_width, test_sidebar_fits_its_default_width):
         try:
             result = test()
