@@ -78,10 +78,16 @@ def bake_world(context, settings, progress=lambda fraction: None, rendered=None,
     progress(0.5)
     # The errors are estimated on the probe grouped to 512 pixels wide: ~50 ms at any probe size.
     max_error = settings.max_error / 100.0 if settings.count_mode == "TOLERANCE" else 0.0
-    baked = native.bake(pixels, projection=projection, method=settings.method, lights=settings.count,
-                        resolution=settings.resolution, evaluate=True, effects="diffuse,shadow",
-                        evaluator_width=512, refit=settings.refit, move_directions=settings.refit,
-                        max_error=max_error, nonfinite=settings.non_finite)
+    try:
+        baked = native.bake(pixels, projection=projection, method=settings.method, lights=settings.count,
+                            resolution=settings.resolution, evaluate=True, effects="diffuse,shadow",
+                            evaluator_width=512, refit=settings.refit, move_directions=settings.refit,
+                            max_error=max_error, nonfinite=settings.non_finite)
+    except ProbeError as e:
+        message = str(e)
+        if "; to read them as 0" in message:  # the module names the CLI's option; here it is the panel's
+            message = message.split("; to read them as 0")[0] + "; to read them as 0 set NaN/Inf to Zero"
+        raise ProbeError(message) from None
     bake_done = time.perf_counter()
     progress(0.8)
     lights = make_lights(scene, world, baked, source, settings.light_type, settings.soft_shadows, settings.distance,

@@ -340,7 +340,7 @@ def test_bad_worlds_are_one_line_reports():
     nan = np.ones((8, 16, 3), np.float32)
     nan[2, 3, 1] = np.nan
     world.node_tree.nodes["Environment Texture"].image = harness.float_image("nan", nan)
-    expect_report("1 NaN/Inf samples")
+    expect_report("1 NaN/Inf samples, first at pixel (3, 2); to read them as 0 set NaN/Inf to Zero")
     assert not light_objects.baked_lights(bpy.context.scene.world)
 
 
@@ -539,6 +539,55 @@ def test_thousands_of_lamps_go_in_one_batch():
     assert removed == 64 and not light_objects.baked_lights(world)
     assert not [l for l in bpy.data.lights if l.name.startswith("Probe Light")]
 
+class RecordingLayout:
+    """Stands in for a panel's layout in background mode (no window): records labels, props and operators."""
+
+    def __init__(self, log):
+        self.log, self.enabled, self.scale_y = log, True, 1.0
+
+    def _child(self, *args, **kwargs):
+        return RecordingLayout(self.log)
+
+    column = row = box = split = _child
+
+    def label(self, text="", icon="NONE"):
+        self.log.append(("label", text))
+
+    def prop(self, data, name, **kwargs):
+        assert hasattr(data, name), name
+        self.log.append(("prop", name))
+
+    def operator(self, idname, **kwargs):
+        module, name = idname.split(".")
+        assert hasattr(getattr(bpy.ops, module), name), idname
+        self.log.append(("operator", idname))
+        return type("Props", (), {})()
+
+
+def test_panel_draws_at_default_width_in_this_blender():
+    """The panel's drawing code in this Blender (fonts, preferences, operators it names), as the World properties
+    editor at its default width would call it, after a bake with warnings and a tradeoff: every line fits."""
+    harness.empty_scene()
+    scene = bpy.context.scene
+    harness.env_world(bpy.data.images.load(harness.BUNDLED_PROBE))
+    scene.cycles.sample_clamp_indirect = 10.0
+    if hasattr(scene.cycles, "use_light_tree"):
+        scene.cycles.use_light_tree = False
+    bake(count=128)
+    assert bpy.ops.probe_lights.tradeoff() == {"FINISHED"}
+    ui = harness.addon_module("ui")
+    for region_type, width in (("WINDOW", 303), ("UI", 229)):
+        log = []
+        region = type("Region", (), {"type": region_type, "width": width})()
+        context = type("Context", (), {"scene": scene, "region": region, "preferences": bpy.context.preferences})()
+        ui.draw_panel(RecordingLayout(log), context)
+        labels = [text for kind, text in log if kind == "label"]
+        assert ("operator", "probe_lights.bake") in log and ("operator", "probe_lights.cycles_settings") in log
+        assert any("Estimated error" in t for t in labels) and len(labels) > 20, labels
+        assert not ui.OVERFLOW, (region_type, ui.OVERFLOW)
+    print("  panel drawn at 303 and 229 px: %d labels, none cut" % len(labels))
+
+
 harness.run([test_register_unregister, test_real_probes_bake_with_their_energy,
              test_strength_and_rotation_carry_into_the_lights, test_every_method_bakes,
              test_estimated_errors_and_count_by_tolerance,
@@ -551,4 +600,5 @@ harness.run([test_register_unregister, test_real_probes_bake_with_their_energy,
              test_lamps_follow_the_worlds_rotation_and_strength, test_suns_on_a_dome_around_the_scene_under_one_rig,
              test_worlds_keep_their_own_lamps_and_mix, test_the_bakes_nodes_are_framed_beside_the_users,
              test_tolerance_never_backfires, test_cycles_settings_offer_and_restore,
-             test_inputs_that_are_not_what_they_claim, test_thousands_of_lamps_go_in_one_batch])
+             test_inputs_that_are_not_what_they_claim, test_thousands_of_lamps_go_in_one_batch,
+             test_panel_draws_at_default_width_in_this_blender])
