@@ -17,11 +17,7 @@ sys.path.insert(0, os.path.join(HERE, "..", "tests", "blender"))
 import harness  # noqa: E402
 import render_scene  # noqa: E402
 
-argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-zip_path = argv[argv.index("--zip") + 1]
-rest = [a for i, a in enumerate(argv) if not a.startswith("--") and (i == 0 or not argv[i - 1].startswith("--"))]
-probe = rest[0] if rest else harness.BUNDLED_PROBE
-samples = int(rest[1]) if len(rest) > 1 else 256
+zip_path, probe, samples = harness.bench_args()
 
 harness.install_addon(zip_path)
 harness.empty_scene()

@@ -36,6 +36,14 @@ ADDON = "probe_lights"  # the add-on's module name once installed (install_addon
 BUNDLED_PROBE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "assets", "noon_grass_1k.hdr")
 
 
+def bench_args(samples=256):
+    """The arguments of the scripts/bench_*.py scripts: the zip, then optionally a probe and a sample count."""
+    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    zip_path = argv[argv.index("--zip") + 1]
+    rest = [a for i, a in enumerate(argv) if not a.startswith("--") and (i == 0 or not argv[i - 1].startswith("--"))]
+    return zip_path, (rest[0] if rest else BUNDLED_PROBE), (int(rest[1]) if len(rest) > 1 else samples)
+
+
 def studiolights(a):
     """The folder of the running Blender's own lat-long studio lights (8 CC0 .exr, shipped with every Blender)."""
     return a.studiolights or bpy.utils.system_resource("DATAFILES", path="studiolights/world")
@@ -127,6 +135,19 @@ def use_nodes(world):
     """Blender before 5.0 renders a world's nodes only when asked; 5.0 always does (World.use_nodes deprecated)."""
     if bpy.app.version < (5, 0, 0):
         world.use_nodes = True
+
+
+def sky_world(elevation_deg=35.0, rotation_deg=0.0):
+    """A world lit by a physical Sky Texture (rendered by the add-on: it has no image to read)."""
+    world = bpy.data.worlds.new("sky")
+    bpy.context.scene.world = world
+    use_nodes(world)
+    sky = world.node_tree.nodes.new("ShaderNodeTexSky")
+    sky_type(sky)
+    sky.sun_elevation = math.radians(elevation_deg)
+    sky.sun_rotation = math.radians(rotation_deg)
+    world.node_tree.links.new(sky.outputs["Color"], world.node_tree.nodes["Background"].inputs["Color"])
+    return world
 
 
 def sky_type(sky, physical=True):

@@ -213,14 +213,7 @@ def test_mirror_ball_image():
 
 def test_sky_texture_world_is_rendered():
     harness.empty_scene()
-    world = bpy.data.worlds.new("sky")
-    bpy.context.scene.world = world
-    harness.use_nodes(world)
-    sky = world.node_tree.nodes.new("ShaderNodeTexSky")
-    harness.sky_type(sky)
-    sky.sun_elevation = math.radians(35)
-    sky.sun_rotation = math.radians(60)
-    world.node_tree.links.new(sky.outputs["Color"], world.node_tree.nodes["Background"].inputs["Color"])
+    harness.sky_world(elevation_deg=35, rotation_deg=60)
     lights = bake(count=16)
     assert len(lights) == 16
     assert bpy.context.scene.probe_lights.last_source.startswith("rendered world"), bpy.context.scene.probe_lights.last_source

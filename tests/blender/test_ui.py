@@ -59,6 +59,12 @@ def test_button_bake_then_undo():
     assert len(light_objects.baked_lights(bpy.context.scene.world)) == 12
 
 
+def _screenshot(win, area, name):
+    if ARGS.save:
+        with bpy.context.temp_override(window=win, area=area):
+            bpy.ops.screen.screenshot_area(filepath=os.path.join(os.path.abspath(ARGS.save), name))
+
+
 def _drawn(area, region_type="WINDOW"):
     """Redraws `area` with the panel's draw wrapped: returns (calls, errors, lines that did not fit)."""
     from probe_lights import ui
@@ -76,25 +82,13 @@ def _drawn(area, region_type="WINDOW"):
     return original, calls, errors
 
 
-def sky_world():
-    import math
-    world = bpy.data.worlds.new("sky")
-    bpy.context.scene.world = world
-    harness.use_nodes(world)
-    sky = world.node_tree.nodes.new("ShaderNodeTexSky")
-    harness.sky_type(sky)
-    sky.sun_elevation = math.radians(35)
-    world.node_tree.links.new(sky.outputs["Color"], world.node_tree.nodes["Background"].inputs["Color"])
-    return world
-
-
 def test_a_rendered_world_bakes_as_a_render_job_that_escape_cancels():
     """A Sky Texture world is rendered by Blender's render job (progress in the status bar, the interface live);
     Esc cancels it and nothing changes; left alone, the bake follows the render."""
     from probe_lights import light_objects
     win = bpy.context.window_manager.windows[0]
     previous = bpy.context.scene.world
-    world = sky_world()
+    world = harness.sky_world()
     before = harness.tree_snapshot(world)
     scenes = len(bpy.data.scenes)
     with window_override():
@@ -195,8 +189,7 @@ def test_panel_fits_the_default_width():
         for _ in range(12):
             win.event_simulate(type="WHEELDOWNMOUSE", value="PRESS", x=x, y=y)
             yield
-        with bpy.context.temp_override(window=win, area=area):
-            bpy.ops.screen.screenshot_area(filepath=os.path.join(os.path.abspath(ARGS.save), "panel.png"))
+        _screenshot(win, area, "panel.png")
 
 
 def test_sidebar_fits_its_default_width():
@@ -226,9 +219,7 @@ def test_sidebar_fits_its_default_width():
     assert calls, "the sidebar's Probe Lights tab never drew"
     width, overflow = calls[-1]
     print("  sidebar: %d px wide, %d lines cut" % (width, len(overflow)))
-    if ARGS.save:
-        with bpy.context.temp_override(window=win, area=area):
-            bpy.ops.screen.screenshot_area(filepath=os.path.join(os.path.abspath(ARGS.save), "sidebar.png"))
+    _screenshot(win, area, "sidebar.png")
     assert not overflow, overflow
 
 
