@@ -32,6 +32,14 @@ def world_collection(world):
     for c in bpy.data.collections:
         if c.get(COLLECTION_TAG) and c.get(WORLD_KEY) == world:
             return c
+    # Version 0.1 made one "Probe Lights" collection per scene, not tied to a world: it belongs to a baked world
+    # of a scene it is in (adopted, i.e. tied to it, by the next bake).
+    from .world_mix import has_mix
+    if has_mix(world):
+        for c in bpy.data.collections:
+            if c.get(COLLECTION_TAG) and c.get(WORLD_KEY) is None and any(
+                    s.world == world and s.user_of_id(c) for s in bpy.data.scenes):
+                return c
     return None
 
 
@@ -97,6 +105,7 @@ def _collection(scene, world):
     if c is None:
         c = bpy.data.collections.new(COLLECTION_NAME % world.name)
         c[COLLECTION_TAG] = 1
+    if c.get(WORLD_KEY) is None:
         c[WORLD_KEY] = world
     if c.name not in scene.collection.children:
         scene.collection.children.link(c)

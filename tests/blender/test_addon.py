@@ -447,6 +447,25 @@ def test_worlds_keep_their_own_lamps_and_mix():
     assert not [c for c in bpy.data.collections if c.get(light_objects.COLLECTION_TAG)]
 
 
+def test_a_bake_by_version_0_1_is_adopted():
+    """Version 0.1 kept one untied "Probe Lights" collection per scene: a re-bake replaces its lamps (the scene is
+    never lit by both), Restore removes them."""
+    harness.empty_scene()
+    scene = bpy.context.scene
+    world = bright_spot_world((40, 20))
+    bake(count=6)
+    c = light_objects.world_collection(world)
+    del c[light_objects.WORLD_KEY]  # as 0.1 left it
+    for o in [o for o in c.objects if o.get(light_objects.RIG_TAG)]:
+        bpy.data.objects.remove(o)
+    assert light_objects.world_collection(world) == c and len(light_objects.baked_lights(world)) == 6
+    bake(count=4)
+    assert len([o for o in scene.objects if o.get(light_objects.OBJECT_TAG)]) == 4
+    assert light_objects.world_collection(world).get(light_objects.WORLD_KEY) == world
+    assert bpy.ops.probe_lights.restore() == {"FINISHED"}
+    assert not [o for o in scene.objects if o.get(light_objects.OBJECT_TAG)]
+
+
 def test_the_bakes_nodes_are_framed_beside_the_users():
     harness.empty_scene()
     world = bright_spot_world((40, 20), rotation=(0.1, 0.2, 0.3))
@@ -591,7 +610,8 @@ harness.run([test_register_unregister, test_real_probes_bake_with_their_energy,
              test_bad_worlds_are_one_line_reports,
              test_point_lights_give_the_same_irradiance_at_the_origin,
              test_lamps_follow_the_worlds_rotation_and_strength, test_suns_on_a_dome_around_the_scene_under_one_rig,
-             test_worlds_keep_their_own_lamps_and_mix, test_the_bakes_nodes_are_framed_beside_the_users,
+             test_worlds_keep_their_own_lamps_and_mix, test_a_bake_by_version_0_1_is_adopted,
+             test_the_bakes_nodes_are_framed_beside_the_users,
              test_tolerance_never_backfires, test_cycles_settings_offer_and_restore,
              test_inputs_that_are_not_what_they_claim, test_thousands_of_lamps_go_in_one_batch,
              test_panel_draws_at_default_width_in_this_blender])
