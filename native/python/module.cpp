@@ -7,7 +7,6 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include <random>
 
 #include "probelights/bake.h"
 #include "probelights/error.h"
@@ -22,36 +21,17 @@ using namespace probelights;
 
 namespace {
 
-template <class T>
-T parseOr(const std::optional<T>& v, const std::string& what, const std::string& got,
-          const std::string& choices) {
-  if (!v) throw Error("unknown " + what + " '" + got + "': use " + choices);
-  return *v;
-}
-
 BakeOptions bakeOptions(const std::string& method, int lights, const std::string& centroid,
                         const std::string& resolution, bool horizon, int bands = 8, double epsilon = 0.01) {
   BakeOptions o;
   o.splitAtHorizon = horizon;
   o.shBands = bands;
   o.shEpsilon = epsilon;
-  o.method = parseOr(parseMethod(method), "method", method, "median-cut, variance or sh");
+  o.method = parseMethod(method);
   o.lights = lights;
-  if (centroid == "energy")
-    o.centroid = CentroidWeight::Energy;
-  else if (centroid == "energy2")
-    o.centroid = CentroidWeight::Energy2;
-  else
-    throw Error("unknown centroid '" + centroid + "': use energy or energy2");
-  o.resolution =
-      parseOr(WorkingResolution::parse(resolution), "resolution", resolution, "full, auto or a width");
+  o.centroid = parseCentroid(centroid);
+  o.resolution = WorkingResolution::parse(resolution);
   return o;
-}
-
-NonFinitePolicy nonFinitePolicy(const std::string& name) {
-  if (name == "error") return NonFinitePolicy::Error;
-  if (name == "zero") return NonFinitePolicy::Zero;
-  throw Error("unknown non-finite policy '" + name + "': use error or zero");
 }
 
 py::array_t<double> matrix(const std::vector<Light>& lights, int columns, auto&& row) {
@@ -129,10 +109,6 @@ ImageView viewOf(Pixels& pixels) {
                    pixels.strides(1) / static_cast<py::ssize_t>(sizeof(float))};
 }
 
-ProjectionKind projectionOf(const std::string& projection) {
-  return parseOr(parseProjection(projection), "projection", projection, "latlong, mirror-ball or angular");
-}
-
 // The accuracy options (tradeoff.h): errors are added to the dict as "errors" {effect: rms}, "energy_shift",
 // "auto_count" {met, lights, tried}.
 void addEvaluation(py::dict& d, const EvaluatedBake& e) {
@@ -150,7 +126,6 @@ void addEvaluation(py::dict& d, const EvaluatedBake& e) {
 
 AccuracyOptions accuracyOptions(const std::string& effects, bool evaluate, bool refit, double maxError,
                                 int evaluatorWidth, bool moveDirections) {
-  if (maxError < 0 || maxError >= 1) throw Error("max_error is a fraction in (0, 1), e.g. 0.01 for 1 %");
   return {parseEffects(effects), evaluate, refit || moveDirections, maxError, evaluatorWidth, moveDirections};
 }
 
@@ -159,9 +134,9 @@ py::dict bakePixels(Pixels pixels, const std::string& projection, const std::str
                     double epsilon, const std::string& effects, bool evaluate, bool refit,
                     bool moveDirections, double maxError, int evaluatorWidth, const std::string& nonfinite) {
   const ImageView view = viewOf(pixels);
-  const auto kind = projectionOf(projection);
+  const auto kind = parseProjection(projection);
   const BakeOptions options = bakeOptions(method, lights, centroid, resolution, horizon, bands, epsilon);
-  const NonFinitePolicy policy = nonFinitePolicy(nonfinite);
+  const NonFinitePolicy policy = parseNonFinitePolicy(nonfinite);
   const AccuracyOptions accuracy =
       accuracyOptions(effects, evaluate, refit, maxError, evaluatorWidth, moveDirections);
   std::optional<Probe> probe;
@@ -183,9 +158,8 @@ py::dict bakeFile(const std::string& path, const std::string& projection, const 
                   int lights, const std::string& centroid, const std::string& resolution, bool horizon,
                   int bands, double epsilon, const std::string& nonfinite) {
   ProbeOptions probeOptions;
-  probeOptions.projection = parseOr(parseProjectionChoice(projection), "projection", projection,
-                                    "auto, latlong, mirror-ball or angular");
-  probeOptions.nonFinite = nonFinitePolicy(nonfinite);
+  probeOptions.projection = parseProjectionChoice(projection);
+  probeOptions.nonFinite = parseNonFinitePolicy(nonfinite);
   const BakeOptions options = bakeOptions(method, lights, centroid, resolution, horizon, bands, epsilon);
   std::optional<Probe> probe;
   BakeResult result;
@@ -205,16 +179,14 @@ py::list tradeoffRows(Pixels pixels, const std::string& projection, const std::s
                       const std::vector<int>& counts, const std::vector<std::string>& methods, bool refit,
                       int evaluatorWidth, const std::string& nonfinite) {
   const ImageView view = viewOf(pixels);
-  const auto kind = projectionOf(projection);
-  const NonFinitePolicy policy = nonFinitePolicy(nonfinite);
+  const auto kind = parseProjection(projection);
+  const NonFinitePolicy policy = parseNonFinitePolicy(nonfinite);
   TradeoffOptions options;
   options.counts = counts;
   options.methods.clear();
-  for (const auto& m : methods) options.methods.push_back(parseOr(parseMethod(m), "method", m, "median-cut, variance or sh"));
+  for (const auto& m : methods) options.methods.push_back(parseMethod(m));
   options.resolutions = {WorkingResolution{}};  // auto
   options.refit = refit;
-  for (int n : counts)
-    if (n < 1 || n > kMaxLights) throw Error("light counts must be 1 to " + std::to_string(kMaxLights));
   const unsigned e = parseEffects(effects);
   std::vector<TradeoffRow> rows;
   {
@@ -239,9 +211,9 @@ py::list tradeoffRows(Pixels pixels, const std::string& projection, const std::s
 py::array_t<double> shProject(Pixels pixels, int bands, const std::string& projection,
                               const std::string& window, bool irradiance, const std::string& nonfinite) {
   const ImageView view = viewOf(pixels);
-  const auto kind = projectionOf(projection);
-  const ShWindow w = parseOr(parseShWindow(window), "window", window, "none, hanning or lanczos");
-  const NonFinitePolicy policy = nonFinitePolicy(nonfinite);
+  const auto kind = parseProjection(projection);
+  const ShWindow w = parseShWindow(window);
+  const NonFinitePolicy policy = parseNonFinitePolicy(nonfinite);
   ShCoefficients sh;
   {
     py::gil_scoped_release release;
@@ -262,22 +234,21 @@ py::array_t<double> shProject(Pixels pixels, int bands, const std::string& proje
 py::tuple shSample(Pixels pixels, int bands, double epsilon, int samples, int depth, std::uint64_t seed,
                    const std::string& projection, const std::string& nonfinite) {
   const ImageView view = viewOf(pixels);
-  const auto kind = projectionOf(projection);
-  const NonFinitePolicy policy = nonFinitePolicy(nonfinite);
-  if (samples < 1) throw Error("asked for " + std::to_string(samples) + " samples: ask for at least 1");
-  py::array_t<double> dirs({static_cast<py::ssize_t>(samples), py::ssize_t{3}}), pdfs(samples);
-  auto d = dirs.mutable_unchecked<2>();
-  auto p = pdfs.mutable_unchecked<1>();
+  const auto kind = parseProjection(projection);
+  const NonFinitePolicy policy = parseNonFinitePolicy(nonfinite);
+  std::vector<ShSampler::Sample> drawn;
   {
     py::gil_scoped_release release;
     Probe probe(view, kind, policy);
-    ShSampler sampler(bands, projectProbe(probe, bands).luminance(), epsilon, depth);
-    std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> u(0.0, 1.0);
-    for (int i = 0; i < samples; ++i) {
-      auto s = sampler.sample({u(rng), u(rng)});
-      d(i, 0) = s.direction.x, d(i, 1) = s.direction.y, d(i, 2) = s.direction.z, p(i) = s.pdf;
-    }
+    drawn = ShSampler(bands, projectProbe(probe, bands).luminance(), epsilon, depth).sampleSeeded(samples, seed);
+  }
+  py::array_t<double> dirs({static_cast<py::ssize_t>(drawn.size()), py::ssize_t{3}}),
+      pdfs(static_cast<py::ssize_t>(drawn.size()));
+  auto d = dirs.mutable_unchecked<2>();
+  auto p = pdfs.mutable_unchecked<1>();
+  for (std::size_t i = 0; i < drawn.size(); ++i) {
+    const auto& s = drawn[i];
+    d(i, 0) = s.direction.x, d(i, 1) = s.direction.y, d(i, 2) = s.direction.z, p(i) = s.pdf;
   }
   return py::make_tuple(dirs, pdfs);
 }

@@ -6,29 +6,24 @@
 #include "parallel.h"
 #include "probelights/error.h"
 #include "probelights/median_cut.h"
+#include "probelights/names.h"
 #include "probelights/sh_lights.h"
 #include "probelights/variance_minimization.h"
 
 namespace probelights {
 
-std::string toString(Method method) {
-  switch (method) {
-    case Method::MedianCut:
-      return "median-cut";
-    case Method::Variance:
-      return "variance";
-    case Method::SphericalHarmonics:
-      return "sh";
-  }
-  return "?";
-}
+namespace {
+constexpr NameTable<Method, 7> kMethods{{{Method::MedianCut, "median-cut"},
+                                         {Method::MedianCut, "mediancut"},
+                                         {Method::MedianCut, "median"},
+                                         {Method::Variance, "variance"},
+                                         {Method::Variance, "variance-minimization"},
+                                         {Method::SphericalHarmonics, "sh"},
+                                         {Method::SphericalHarmonics, "spherical-harmonics"}}};
+}  // namespace
 
-std::optional<Method> parseMethod(const std::string& name) {
-  if (name == "median-cut" || name == "mediancut" || name == "median") return Method::MedianCut;
-  if (name == "variance" || name == "variance-minimization") return Method::Variance;
-  if (name == "sh" || name == "spherical-harmonics") return Method::SphericalHarmonics;
-  return std::nullopt;
-}
+std::string toString(Method method) { return nameOf(kMethods, method); }
+Method parseMethod(const std::string& name) { return parseName(kMethods, "method", name); }
 
 namespace {
 

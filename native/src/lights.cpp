@@ -1,11 +1,21 @@
 #include "probelights/lights.h"
 
+#include "probelights/names.h"
+
 #include <algorithm>
 #include <cmath>
 
 #include "parallel.h"
 
 namespace probelights {
+
+namespace {
+constexpr NameTable<CentroidWeight, 2> kCentroids{
+    {{CentroidWeight::Energy, "energy"}, {CentroidWeight::Energy2, "energy2"}}};
+}  // namespace
+
+std::string toString(CentroidWeight weight) { return nameOf(kCentroids, weight); }
+CentroidWeight parseCentroid(const std::string& name) { return parseName(kCentroids, "centroid", name); }
 
 std::vector<Light> lightsFromRegions(const Probe& probe, const std::vector<Rect>& regions,
                                      CentroidWeight centroid) {

@@ -25,12 +25,13 @@ int WorkingResolution::cellSize(int probeWidth) const {
   return 1;
 }
 
-std::optional<WorkingResolution> WorkingResolution::parse(const std::string& text) {
+WorkingResolution WorkingResolution::parse(const std::string& text) {
   if (text == "full") return WorkingResolution{Mode::Full, 0};
   if (text == "auto") return WorkingResolution{Mode::Auto, 0};
   int w = 0;
   auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), w);
-  if (ec != std::errc() || end != text.data() + text.size() || w < 1) return std::nullopt;
+  if (ec != std::errc() || end != text.data() + text.size() || w < 1)
+    throw Error("unknown resolution '" + text + "': use full, auto or a width in pixels");
   return WorkingResolution{Mode::Width, w};
 }
 

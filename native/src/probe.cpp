@@ -6,14 +6,29 @@
 
 #include "parallel.h"
 #include "probelights/error.h"
+#include "probelights/names.h"
 
 namespace probelights {
 
-std::optional<ProjectionChoice> parseProjectionChoice(const std::string& name) {
+namespace {
+constexpr NameTable<NonFinitePolicy, 2> kNonFinite{
+    {{NonFinitePolicy::Error, "error"}, {NonFinitePolicy::Zero, "zero"}}};
+}  // namespace
+
+std::string toString(NonFinitePolicy policy) { return nameOf(kNonFinite, policy); }
+NonFinitePolicy parseNonFinitePolicy(const std::string& name) {
+  return parseName(kNonFinite, "non-finite policy", name);
+}
+
+ProjectionChoice parseProjectionChoice(const std::string& name) {
   if (name == "auto") return ProjectionChoice::Auto;
-  auto kind = parseProjection(name);
-  if (!kind) return std::nullopt;
-  switch (*kind) {
+  ProjectionKind kind;
+  try {
+    kind = parseProjection(name);
+  } catch (const Error&) {
+    throw Error("unknown projection '" + name + "': use auto, latlong, mirror-ball or angular");
+  }
+  switch (kind) {
     case ProjectionKind::LatLong:
       return ProjectionChoice::LatLong;
     case ProjectionKind::MirrorBall:
@@ -21,7 +36,7 @@ std::optional<ProjectionChoice> parseProjectionChoice(const std::string& name) {
     case ProjectionKind::Angular:
       return ProjectionChoice::Angular;
   }
-  return std::nullopt;
+  return ProjectionChoice::Auto;
 }
 
 namespace {

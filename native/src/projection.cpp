@@ -3,26 +3,23 @@
 #include <algorithm>
 #include <cassert>
 
+#include "probelights/names.h"
+
 namespace probelights {
 
-std::string toString(ProjectionKind kind) {
-  switch (kind) {
-    case ProjectionKind::LatLong:
-      return "latlong";
-    case ProjectionKind::MirrorBall:
-      return "mirror-ball";
-    case ProjectionKind::Angular:
-      return "angular";
-  }
-  return "?";
-}
+namespace {
+constexpr NameTable<ProjectionKind, 8> kProjections{{{ProjectionKind::LatLong, "latlong"},
+                                                     {ProjectionKind::LatLong, "lat-long"},
+                                                     {ProjectionKind::LatLong, "equirectangular"},
+                                                     {ProjectionKind::MirrorBall, "mirror-ball"},
+                                                     {ProjectionKind::MirrorBall, "mirrorball"},
+                                                     {ProjectionKind::MirrorBall, "ball"},
+                                                     {ProjectionKind::Angular, "angular"},
+                                                     {ProjectionKind::Angular, "angular-map"}}};
+}  // namespace
 
-std::optional<ProjectionKind> parseProjection(const std::string& name) {
-  if (name == "latlong" || name == "lat-long" || name == "equirectangular") return ProjectionKind::LatLong;
-  if (name == "mirror-ball" || name == "mirrorball" || name == "ball") return ProjectionKind::MirrorBall;
-  if (name == "angular" || name == "angular-map") return ProjectionKind::Angular;
-  return std::nullopt;
-}
+std::string toString(ProjectionKind kind) { return nameOf(kProjections, kind); }
+ProjectionKind parseProjection(const std::string& name) { return parseName(kProjections, "projection", name); }
 
 namespace {
 

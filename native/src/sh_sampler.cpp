@@ -1,6 +1,7 @@
 #include "probelights/sh_sampler.h"
 
 #include <algorithm>
+#include <random>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -155,6 +156,18 @@ std::vector<double> offsetUntilPositive(int bands, std::vector<double> c) {
     }
   c[0] += -minimum * std::sqrt(4.0 * kPi) * 1.001;
   return c;
+}
+
+std::vector<ShSampler::Sample> ShSampler::sampleSeeded(int count, std::uint64_t seed) const {
+  if (count < 1) throw Error("asked for " + std::to_string(count) + " samples: ask for at least 1");
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<Sample> out(static_cast<std::size_t>(count));
+  for (Sample& s : out) {
+    const double a = u(rng);
+    s = sample({a, u(rng)});
+  }
+  return out;
 }
 
 }  // namespace probelights

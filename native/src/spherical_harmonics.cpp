@@ -5,6 +5,7 @@
 
 #include "parallel.h"
 #include "probelights/error.h"
+#include "probelights/names.h"
 
 namespace probelights {
 
@@ -13,12 +14,13 @@ int legendreIndex(int l, int m) { return l * (l + 1) / 2 + m; }
 constexpr double kSqrt2 = 1.4142135623730951;
 }  // namespace
 
-std::optional<ShWindow> parseShWindow(const std::string& name) {
-  if (name == "none") return ShWindow::None;
-  if (name == "hanning") return ShWindow::Hanning;
-  if (name == "lanczos") return ShWindow::Lanczos;
-  return std::nullopt;
-}
+namespace {
+constexpr NameTable<ShWindow, 3> kWindows{
+    {{ShWindow::None, "none"}, {ShWindow::Hanning, "hanning"}, {ShWindow::Lanczos, "lanczos"}}};
+}  // namespace
+
+std::string toString(ShWindow window) { return nameOf(kWindows, window); }
+ShWindow parseShWindow(const std::string& name) { return parseName(kWindows, "window", name); }
 
 void normalizedLegendre(int bands, double z, std::span<double> out) {
   const double s = std::sqrt(std::max(0.0, 1.0 - z * z));

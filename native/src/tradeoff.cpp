@@ -19,6 +19,8 @@ double bakeMs(const BakeResult& r) { return r.timings.tablesMs + r.timings.parti
 }  // namespace
 
 std::vector<TradeoffRow> tradeoff(const Probe& probe, const Evaluator& evaluator, const TradeoffOptions& o) {
+  for (int n : o.counts)
+    if (n < 1 || n > kMaxLights) throw Error("light counts must be 1 to " + std::to_string(kMaxLights));
   std::vector<TradeoffRow> rows;
   for (Method method : o.methods)
     for (const WorkingResolution& res : o.resolutions) {
@@ -94,6 +96,12 @@ AutoCountResult autoCount(const Probe& probe, const Evaluator& evaluator, BakeOp
 }
 
 EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOptions a) {
+  if (!(a.maxError >= 0 && a.maxError < 1))
+  {
+    char got[32];
+    std::snprintf(got, sizeof got, "%g", a.maxError);
+    throw Error(std::string("the error tolerance is a fraction in (0, 1), e.g. 0.01 for 1 %; got ") + got);
+  }
   EvaluatedBake out;
   const bool evaluating = a.evaluate || a.refit || a.maxError > 0;
   if (a.refit) a.effects |= kDiffuse;

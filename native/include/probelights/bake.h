@@ -14,7 +14,7 @@ namespace probelights {
 
 enum class Method { MedianCut, Variance, SphericalHarmonics };
 std::string toString(Method method);
-std::optional<Method> parseMethod(const std::string& name);
+Method parseMethod(const std::string& name);  // throws Error naming the choices
 
 struct BakeOptions {
   Method method = Method::Variance;

@@ -1,6 +1,8 @@
 // Lights from regions: what a renderer needs to stand in for the probe over each region.
 #pragma once
 
+#include <string>
+
 #include <vector>
 
 #include "probelights/geometry.h"
@@ -12,6 +14,8 @@ namespace probelights {
 // Which pixels' weight places a light inside its region: energy = Y dOmega (the centroid of the region's
 // light), energy2 = Y^2 dOmega (seed 001's "Centroid Formula 2": pulled towards the brightest pixels).
 enum class CentroidWeight { Energy, Energy2 };
+std::string toString(CentroidWeight weight);            // "energy", "energy2"
+CentroidWeight parseCentroid(const std::string& name);  // throws Error naming the choices
 
 struct Light {
   Vec3 direction;         // unit vector towards the light (normalized weighted mean of pixel directions)

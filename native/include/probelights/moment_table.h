@@ -46,7 +46,7 @@ struct WorkingResolution {
   int width = 0;
 
   int cellSize(int probeWidth) const;
-  static std::optional<WorkingResolution> parse(const std::string& text);
+  static WorkingResolution parse(const std::string& text);  // throws Error naming the choices
   std::string toString() const;
 };
 

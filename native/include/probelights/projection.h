@@ -38,7 +38,7 @@ namespace probelights {
 enum class ProjectionKind { LatLong, MirrorBall, Angular };
 
 std::string toString(ProjectionKind kind);  // "latlong", "mirror-ball", "angular"
-std::optional<ProjectionKind> parseProjection(const std::string& name);
+ProjectionKind parseProjection(const std::string& name);  // throws Error naming the choices
 
 class Projection {
  public:

@@ -17,6 +17,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "probelights/geometry.h"
@@ -34,6 +35,8 @@ class ShSampler {
   ShSampler(int bands, std::vector<double> coefficients, double epsilon, int depth = 8);
 
   Sample sample(std::array<double, 2> u) const;
+  // `count` samples of uniform points from a 64-bit Mersenne twister seeded with `seed` (reproducible).
+  std::vector<Sample> sampleSeeded(int count, std::uint64_t seed) const;
   double pdf(const Vec3& direction) const;
   // The point of the unit square that sample() maps to `direction` (the inverse warp).
   std::array<double, 2> invert(const Vec3& direction) const;

@@ -32,7 +32,8 @@ void shBasis(int bands, const Vec3& d, std::span<double> out);
 void normalizedLegendre(int bands, double z, std::span<double> out);
 
 enum class ShWindow { None, Hanning, Lanczos };
-std::optional<ShWindow> parseShWindow(const std::string& name);
+std::string toString(ShWindow window);             // "none", "hanning", "lanczos"
+ShWindow parseShWindow(const std::string& name);  // throws Error naming the choices
 
 struct ShCoefficients {
   int bands = 0;

@@ -32,11 +32,6 @@ struct TradeoffOptions {
 std::vector<TradeoffRow> tradeoff(const Probe& probe, const Evaluator& evaluator,
                                   const TradeoffOptions& options);
 
-// Writes error (the worst of the evaluated effects, %) against bake time (ms), log axes, one curve per method
-// (refit curves lighter), as a PNG with OpenImageIO (in probelights_io, not the portable core).
-void writeTradeoffPlot(const std::vector<TradeoffRow>& rows, unsigned effects, const std::string& title,
-                       const std::string& path);
-
 struct AutoCountResult {
   BakeResult bake;
   EffectErrors errors;

@@ -1,4 +1,4 @@
-// The tradeoff plot, drawn with OpenImageIO (part of probelights_io: the portable core links no image library).
+// The tradeoff plot of `probelights tradeoff --plot`, drawn with OpenImageIO: a CLI concern, not the library's.
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 
@@ -10,19 +10,27 @@
 #include <map>
 
 #include "probelights/error.h"
-#include "probelights/tradeoff.h"
+#include "tradeoff_plot.h"
 
-namespace probelights {
+namespace probelights::cli {
 
 namespace {
 
-const char* kFont = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+// The labels' font, found at run time: DejaVu Sans where installed (Debian: fonts-dejavu-core), else
+// OpenImageIO's own default font.
+std::string labelFont() {
+  for (const char* path : {"/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
+                           "/usr/share/fonts/TTF/DejaVuSans.ttf", "/usr/share/fonts/dejavu/DejaVuSans.ttf"})
+    if (std::filesystem::exists(path)) return path;
+  return "";
+}
 
 }  // namespace
 
 void writeTradeoffPlot(const std::vector<TradeoffRow>& rows, unsigned effects, const std::string& title,
                        const std::string& path) {
   const int W = 960, H = 640, left = 90, right = 250, top = 50, bottom = 70;
+  const std::string font = labelFont();
   OIIO::ImageBuf img(OIIO::ImageSpec(W, H, 3, OIIO::TypeDesc::FLOAT));
   const float white[3] = {1, 1, 1}, grey[3] = {0.85f, 0.85f, 0.85f}, black[3] = {0, 0, 0};
   OIIO::ImageBufAlgo::fill(img, white);
@@ -46,7 +54,7 @@ void writeTradeoffPlot(const std::vector<TradeoffRow>& rows, unsigned effects, c
     return H - bottom - (std::log10(pct) - le0) / std::max(1e-9, le1 - le0) * (H - top - bottom);
   };
   auto text = [&](int x, int y, const std::string& s, int size, const float* colour) {
-    OIIO::ImageBufAlgo::render_text(img, x, y, s, size, std::filesystem::exists(kFont) ? kFont : "",
+    OIIO::ImageBufAlgo::render_text(img, x, y, s, size, font,
                                     OIIO::cspan<float>(colour, 3));
   };
   for (double d = lt0; d <= lt1; ++d) {  // decades
@@ -100,4 +108,4 @@ void writeTradeoffPlot(const std::vector<TradeoffRow>& rows, unsigned effects, c
     throw Error("cannot write plot '" + path + "': " + img.geterror());
 }
 
-}  // namespace probelights
+}  // namespace probelights::cli

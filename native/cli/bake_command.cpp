@@ -1,0 +1,119 @@
+// probelights bake PROBE [options]: N lights that carry exactly the probe's energy (usage in main.cpp).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "commands.h"
+#include "json_output.h"
+#include "options.h"
+#include "probelights/bake.h"
+#include "probelights/evaluate.h"
+#include "probelights/preview.h"
+#include "probelights/tradeoff.h"
+
+namespace probelights::cli {
+
+namespace {
+
+struct BakeArgs {
+  std::string probe, output, preview;
+  ProbeOptions probeOptions;
+  BakeOptions bake;
+  AccuracyOptions accuracy;
+  bool quiet = false;
+};
+
+BakeArgs parseBakeArgs(const std::vector<std::string>& argv) {
+  BakeArgs a;
+  BakeOptions& b = a.bake;
+  AccuracyOptions& acc = a.accuracy;
+  std::vector<Option> table{
+      {{"--method"}, [&](const std::string& v) { b.method = parseMethod(v); }},
+      {{"--lights", "-n"}, [&](const std::string& v) { b.lights = parseCount("--lights", v); }},
+      {{"--centroid"}, [&](const std::string& v) { b.centroid = parseCentroid(v); }},
+      {{"--resolution"}, [&](const std::string& v) { b.resolution = WorkingResolution::parse(v); }},
+      {{"--bands"}, [&](const std::string& v) { b.shBands = parseCount("--bands", v); }},
+      {{"--epsilon"}, [&](const std::string& v) { b.shEpsilon = parseReal("--epsilon", v); }},
+      {{"--horizon"},
+       [&](const std::string& v) {
+         if (v != "on" && v != "off") throw UsageError("--horizon takes on or off, got '" + v + "'");
+         b.splitAtHorizon = v == "on";
+       }},
+      {{"-o", "--output"}, [&](const std::string& v) { a.output = v; }},
+      {{"--preview"}, [&](const std::string& v) { a.preview = v; }},
+      {{"--max-error"}, [&](const std::string& v) { acc.maxError = parseTolerance("--max-error", v); }},
+      {{"--effects"}, [&](const std::string& v) { acc.effects = parseEffects(v); }},
+      flag({"-q", "--quiet"}, [&] { a.quiet = true; }),
+      flag({"--refit"}, [&] { acc.refit = true; }),
+      flag({"--refit-directions"}, [&] { acc.refit = acc.moveDirections = true; }),
+      flag({"--evaluate"}, [&] { acc.evaluate = true; }),
+  };
+  addProbeOptions(table, a.probeOptions);
+  a.probe = oneProbe(parseOptions(argv, table), "bake");
+  return a;
+}
+
+void printSummary(const BakeArgs& a, const Probe& probe, const BakeOptions& options, const BakeResult& r,
+                  double loadMs, const Evaluation& ev) {
+  std::printf("probe      %s  %dx%d %s\n", a.probe.c_str(), probe.width(), probe.height(),
+              toString(probe.projection().kind()).c_str());
+  for (const auto& note : probe.report().notes) std::printf("note       %s\n", note.c_str());
+  for (const auto& note : r.notes) std::printf("note       %s\n", note.c_str());
+  std::printf("method     %s, %zu lights, cuts on a %dx%d grid (cell %d px)\n", toString(options.method).c_str(),
+              r.lights.size(), (probe.width() + r.cellSize - 1) / r.cellSize,
+              (probe.height() + r.cellSize - 1) / r.cellSize, r.cellSize);
+  std::printf("\n   #  direction (x, y, z)          rgb (W/m^2)                      share  radius(deg)\n");
+  for (std::size_t i = 0; i < r.lights.size(); ++i) {
+    const Light& l = r.lights[i];
+    std::printf("%4zu  (%6.3f, %6.3f, %6.3f)  (%9.4g, %9.4g, %9.4g)  %6.2f%%  %8.2f\n", i, l.direction.x,
+                l.direction.y, l.direction.z, l.rgb[0], l.rgb[1], l.rgb[2], 100 * l.energyShare,
+                l.angularRadius * 180 / kPi);
+  }
+  Rgb sum{};
+  for (const Light& l : r.lights)
+    for (int k = 0; k < 3; ++k) sum[k] += l.rgb[k];
+  double worst = 0;
+  for (int k = 0; k < 3; ++k)
+    if (r.totalRgb[k] > 0) worst = std::max(worst, std::abs(sum[k] - r.totalRgb[k]) / r.totalRgb[k]);
+  std::printf(
+      "\nenergy     probe integral (%.6g, %.6g, %.6g), lights sum (%.6g, %.6g, %.6g), max rel. diff %.1e\n",
+      r.totalRgb[0], r.totalRgb[1], r.totalRgb[2], sum[0], sum[1], sum[2], worst);
+  if (ev.done) {
+    std::printf("error      ");
+    if (ev.effects & kDiffuse) std::printf("diffuse %.2f%%  ", 100 * ev.errors.diffuse);
+    if (ev.effects & kShadow) std::printf("shadow %.2f%%  ", 100 * ev.errors.shadow);
+    if (ev.effects & kGlossy) std::printf("glossy %.2f%%  ", 100 * ev.errors.glossy);
+    std::printf("(relative RMS of luminance vs the probe)%s\n", ev.refit ? ", lights refit" : "");
+    if (ev.refit && !ev.autoCount) std::printf("refit      energy shift %+.2f%%\n", 100 * ev.energyShift);
+  }
+  std::printf("time (ms)  load %.1f  tables %.1f  partition %.1f  lights %.1f  (bake %.1f)\n", loadMs,
+              r.timings.tablesMs, r.timings.partitionMs, r.timings.lightsMs,
+              r.timings.tablesMs + r.timings.partitionMs + r.timings.lightsMs);
+}
+
+}  // namespace
+
+int bakeCommand(const std::vector<std::string>& argv) {
+  BakeArgs a = parseBakeArgs(argv);
+  auto t0 = std::chrono::steady_clock::now();
+  Probe probe = Probe::load(a.probe, a.probeOptions);
+  const double loadMs = msSince(t0);
+  EvaluatedBake done = bakeEvaluated(probe, a.bake, a.accuracy);
+  BakeOptions used = a.bake;
+  used.lights = done.lights;
+  Evaluation evaluation;
+  evaluation.done = done.evaluated, evaluation.autoCount = done.autoCount, evaluation.met = done.met;
+  evaluation.tried = done.tried, evaluation.errors = done.errors, evaluation.energyShift = done.energyShift;
+  evaluation.effects = done.effects;
+  evaluation.refit = a.accuracy.refit;
+  if (!a.output.empty()) {
+    writeJson(bakeToJson(a.probe, probe, used, done.bake, loadMs, evaluation), a.output, 2);
+    if (a.output == "-") a.quiet = true;
+  }
+  if (!a.preview.empty()) writePreview(probe, done.bake, a.preview);
+  if (!a.quiet) printSummary(a, probe, used, done.bake, loadMs, evaluation);
+  return 0;
+}
+
+}  // namespace probelights::cli

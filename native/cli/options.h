@@ -1,0 +1,53 @@
+// What every CLI command shares: a declarative option table and its parser, number parsing, JSON output.
+#pragma once
+
+#include <chrono>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "probelights/error.h"
+#include "probelights/probe.h"
+
+namespace probelights::cli {
+
+// A bad command line: exit code 2 like every other bad input, with the one-line message.
+struct UsageError : Error {
+  using Error::Error;
+};
+
+// One option of a command: its spellings and what it does with its value (a flag takes none).
+struct Option {
+  std::vector<std::string> names;                  // e.g. {"--lights", "-n"}
+  std::function<void(const std::string&)> apply;  // with the value ("" for a flag)
+  bool flag = false;
+};
+
+inline Option flag(std::vector<std::string> names, std::function<void()> set) {
+  return {std::move(names), [set = std::move(set)](const std::string&) { set(); }, true};
+}
+
+// Reads "--option value", "--option=value" and flags against `table`; returns the positional arguments.
+// Unknown options are a UsageError.
+std::vector<std::string> parseOptions(const std::vector<std::string>& argv, const std::vector<Option>& table);
+
+// The one probe a command takes, from the positional arguments.
+std::string oneProbe(const std::vector<std::string>& positional, const std::string& command);
+
+// The options every command reading a probe has: --projection and --nonfinite.
+void addProbeOptions(std::vector<Option>& table, ProbeOptions& options);
+
+double parseReal(const std::string& flag, const std::string& text);
+int parseCount(const std::string& flag, const std::string& text);
+double parseTolerance(const std::string& flag, const std::string& text);  // "1%" or "0.01"
+std::vector<std::string> splitList(const std::string& text);               // "a,b,c"
+
+// JSON to a file, or standard output for "-"; indented by `indent`, by default compact on standard output and
+// by 1 in a file.
+void writeJson(const nlohmann::json& j, const std::string& output, int indent = -2);
+nlohmann::json sourceJson(const std::string& path, const Probe& probe);
+
+double msSince(std::chrono::steady_clock::time_point t);
+
+}  // namespace probelights::cli

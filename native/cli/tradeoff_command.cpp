@@ -1,0 +1,78 @@
+// probelights tradeoff PROBE: what accuracy costs in time, as a table, JSON and a plot (usage in main.cpp).
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <tuple>
+
+#include "commands.h"
+#include "options.h"
+#include "probelights/evaluate.h"
+#include "probelights/tradeoff.h"
+#include "tradeoff_plot.h"
+
+namespace probelights::cli {
+
+int tradeoffCommand(const std::vector<std::string>& argv) {
+  std::string output, plot;
+  ProbeOptions probeOptions;
+  TradeoffOptions options;
+  unsigned effects = kDiffuse | kShadow;
+  std::vector<Option> table{
+      {{"--effects"}, [&](const std::string& v) { effects = parseEffects(v); }},
+      {{"--counts"},
+       [&](const std::string& v) {
+         options.counts.clear();
+         for (const auto& c : splitList(v)) options.counts.push_back(parseCount("--counts", c));
+       }},
+      {{"--methods"},
+       [&](const std::string& v) {
+         options.methods.clear();
+         for (const auto& m : splitList(v)) options.methods.push_back(parseMethod(m));
+       }},
+      flag({"--no-refit"}, [&] { options.refit = false; }),
+      {{"-o", "--output"}, [&](const std::string& v) { output = v; }},
+      {{"--plot"}, [&](const std::string& v) { plot = v; }},
+  };
+  addProbeOptions(table, probeOptions);
+  const std::string probePath = oneProbe(parseOptions(argv, table), "tradeoff");
+
+  auto t0 = std::chrono::steady_clock::now();
+  Probe probe = Probe::load(probePath, probeOptions);
+  Evaluator evaluator(probe, effects, EvaluatorOptions{2048, options.refit});
+  const double truthMs = msSince(t0);
+  auto rows = tradeoff(probe, evaluator, options);
+  std::printf("probe %s %dx%d; effects %s; ground truth %.0f ms; error = relative RMS of luminance\n\n",
+              probePath.c_str(), probe.width(), probe.height(), effectsToString(effects).c_str(), truthMs);
+  std::printf("%-11s %6s %6s %5s %10s", "method", "lights", "res", "refit", "bake ms");
+  for (auto [bit, name] :
+       {std::pair{kDiffuse, "diffuse"}, std::pair{kShadow, "shadow"}, std::pair{kGlossy, "glossy"}})
+    if (effects & bit) std::printf(" %9s", name);
+  std::printf("\n");
+  nlohmann::json rowsJson = nlohmann::json::array();
+  for (const TradeoffRow& r : rows) {
+    std::printf("%-11s %6d %6s %5s %10.2f", toString(r.method).c_str(), r.made, r.resolution.c_str(),
+                r.refit ? "yes" : "no", r.bakeMs);
+    nlohmann::json row{{"method", toString(r.method)}, {"lights", r.lights}, {"made", r.made},
+                       {"resolution", r.resolution},   {"refit", r.refit},   {"bake_ms", r.bakeMs}};
+    for (auto [bit, name, value] :
+         {std::tuple{kDiffuse, "diffuse", r.errors.diffuse}, std::tuple{kShadow, "shadow", r.errors.shadow},
+          std::tuple{kGlossy, "glossy", r.errors.glossy}})
+      if (effects & bit) std::printf(" %8.3f%%", 100 * value), row[name] = value;
+    std::printf("\n");
+    rowsJson.push_back(row);
+  }
+  if (!output.empty())
+    writeJson({{"source", sourceJson(probePath, probe)},
+               {"effects", effectsToString(effects)},
+               {"error", "relative RMS of luminance over the effect's sample points"},
+               {"rows", rowsJson}},
+              output);
+  if (!plot.empty()) {
+    writeTradeoffPlot(rows, effects,
+                      std::filesystem::path(probePath).filename().string() + ": error vs bake time", plot);
+    std::printf("\nplot: %s\n", plot.c_str());
+  }
+  return 0;
+}
+
+}  // namespace probelights::cli

@@ -1,0 +1,47 @@
+// The words of every option: one table per enum, shared by the CLI, the Python module and the JSON, so every
+// shell parses, prints and refuses a word the same way ("unknown method 'x': use median-cut, variance or sh").
+// A table lists each value's canonical word first; later rows for the same value are accepted aliases.
+#pragma once
+
+#include <array>
+#include <string>
+#include <string_view>
+#include <utility>
+
+#include "probelights/error.h"
+
+namespace probelights {
+
+template <class E, std::size_t N>
+using NameTable = std::array<std::pair<E, std::string_view>, N>;
+
+// The canonical words, "a, b or c".
+template <class E, std::size_t N>
+std::string choicesOf(const NameTable<E, N>& table) {
+  std::string out;
+  std::size_t listed = 0, total = 0;
+  for (std::size_t i = 0; i < N; ++i) total += (i == 0 || table[i].first != table[i - 1].first) ? 1 : 0;
+  for (std::size_t i = 0; i < N; ++i) {
+    if (i > 0 && table[i].first == table[i - 1].first) continue;
+    out += listed == 0 ? "" : listed + 1 == total ? " or " : ", ";
+    out += table[i].second;
+    ++listed;
+  }
+  return out;
+}
+
+template <class E, std::size_t N>
+E parseName(const NameTable<E, N>& table, std::string_view what, std::string_view word) {
+  for (const auto& [value, name] : table)
+    if (name == word) return value;
+  throw Error("unknown " + std::string(what) + " '" + std::string(word) + "': use " + choicesOf(table));
+}
+
+template <class E, std::size_t N>
+std::string nameOf(const NameTable<E, N>& table, E value) {
+  for (const auto& [v, name] : table)
+    if (v == value) return std::string(name);
+  return "?";
+}
+
+}  // namespace probelights
