@@ -1,6 +1,5 @@
-// The evaluator (ground truth against brute force and closed forms), the irradiance refit and the auto count.
+// The evaluator: its ground truth against brute force and closed forms, and the effect names.
 #include "probelights/evaluate.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -73,79 +72,6 @@ TEST(Evaluator, OneLightPerPixelIsExactAndFewLightsAreNot) {
   auto few = ev.evaluate(bake(t.probe, o).lights);
   EXPECT_GT(few.diffuse, 1e-3);
   EXPECT_TRUE(std::isnan(Evaluator(t.probe, kDiffuse).evaluate(all.lights).shadow));  // only what was asked
-}
-
-TEST(Nnls, SolvesAKnownNonNegativeProblem) {
-  // A x = b with x* = (1, 0, 2): NNLS finds it; with b pushing x2 negative it clamps to 0.
-  const std::vector<double> A = {1, 0, 1, 0, 1, 0, 1, 1, 0, 0, 0, 1};
-  auto x = nonNegativeLeastSquares(A, 4, 3, {3, 0, 1, 2});
-  EXPECT_NEAR(x[0], 1, 1e-9);  // the tiny ridge that keeps rank-deficient solves stable
-  EXPECT_NEAR(x[1], 0, 1e-12);
-  EXPECT_NEAR(x[2], 2, 1e-9);
-  auto y = nonNegativeLeastSquares(A, 4, 3, {1, -5, 1, 0});
-  for (double v : y) EXPECT_GE(v, 0.0);
-  EXPECT_NEAR(y[1], 0, 1e-12);
-}
-
-TEST(Refit, LowersTheDiffuseErrorOnRealProbes) {
-  Probe probe = Probe::load(PROBELIGHTS_BUNDLED_PROBE);
-  Evaluator ev(probe, kDiffuse | kShadow, {2048, true});
-  for (int n : {16, 64}) {
-    BakeOptions o;
-    o.lights = n;
-    auto lights = bake(probe, o).lights;
-    double shift = 0;
-    auto refit = refitIrradiance(ev, lights, &shift);
-    EXPECT_LT(ev.evaluate(refit).diffuse, ev.evaluate(lights).diffuse);
-    EXPECT_LT(std::abs(shift), 0.02);
-    for (const Light& l : refit)
-      for (double c : l.rgb) EXPECT_GE(c, 0.0);
-  }
-  EXPECT_THROW(refitIrradiance(Evaluator(probe, kDiffuse), std::vector<Light>(3)), Error);  // not made for refit
-}
-
-TEST(Refit, MovingDirectionsLowersItFurther) {
-  Probe probe = Probe::load(PROBELIGHTS_BUNDLED_PROBE);
-  Evaluator ev(probe, kDiffuse | kShadow, {2048, true});
-  BakeOptions o;
-  o.lights = 16;
-  auto lights = bake(probe, o).lights;
-  auto colours = refitIrradiance(ev, lights);
-  auto moved = refitIrradiance(ev, lights, nullptr, true);
-  EXPECT_LT(ev.evaluate(moved).diffuse, ev.evaluate(colours).diffuse);
-  for (const Light& l : moved) EXPECT_NEAR(l.direction.length(), 1.0, 1e-9);
-}
-
-TEST(AutoCount, FindsTheSmallestCountThatMeetsTheTolerance) {
-  Probe probe = Probe::load(PROBELIGHTS_BUNDLED_PROBE);
-  Evaluator ev(probe, kDiffuse);
-  auto r = autoCount(probe, ev, BakeOptions{}, 0.02, false);
-  ASSERT_TRUE(r.met);
-  EXPECT_LE(r.errors.diffuse, 0.02);
-  EXPECT_EQ(static_cast<int>(r.bake.lights.size()), r.lights);
-  BakeOptions fewer;
-  fewer.lights = r.lights - 1;
-  EXPECT_GT(ev.evaluate(bake(probe, fewer).lights).diffuse, 0.02);  // one light fewer misses it
-  auto never = autoCount(probe, ev, BakeOptions{}, 1e-9, false, 8);
-  EXPECT_FALSE(never.met);
-}
-
-TEST(AutoCount, AMissKeepsTheCountWithTheLowestError) {
-  // Shadows of many narrow lights can be worse than of a few: when the tolerance is missed, the result is the
-  // count with the lowest error tried, never a larger count that did worse.
-  Probe probe = Probe::load(PROBELIGHTS_BUNDLED_PROBE);
-  Evaluator ev(probe, kDiffuse | kShadow, {256, false});
-  auto r = autoCount(probe, ev, BakeOptions{}, 1e-9, false, 1024);
-  ASSERT_FALSE(r.met);
-  double lowest = 1e300;
-  int at = 0;
-  for (auto [n, e] : r.tried)
-    if (e < lowest) lowest = e, at = n;
-  EXPECT_EQ(r.lights, at);
-  EXPECT_DOUBLE_EQ(r.errors.worst(kDiffuse | kShadow), lowest);
-  EXPECT_EQ(static_cast<int>(r.bake.lights.size()), r.lights);
-  for (auto [n, e] : r.tried) EXPECT_TRUE(n < r.lights || e >= lowest);
-  EXPECT_LE(r.tried.back().first, 4 * r.lights);  // stopped two doublings past the best
 }
 
 TEST(Effects, ParseAndPrint) {

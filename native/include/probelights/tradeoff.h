@@ -8,6 +8,7 @@
 
 #include "probelights/bake.h"
 #include "probelights/evaluate.h"
+#include "probelights/refit.h"
 
 namespace probelights {
 
@@ -55,7 +56,7 @@ struct AccuracyOptions {
   bool evaluate = false, refit = false;
   double maxError = 0;
   int evaluatorWidth = 2048;    // EvaluatorOptions::maxWidth (the add-on's quick estimate uses 512)
-  bool moveDirections = false;  // the refit also moves directions (evaluate.h)
+  bool moveDirections = false;  // the refit also moves directions (refit.h)
 };
 
 struct EvaluatedBake {

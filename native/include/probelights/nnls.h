@@ -1,0 +1,12 @@
+// Non-negative least squares (Lawson & Hanson 1974, chapter 23): the solver behind the refit (refit.h).
+#pragma once
+
+#include <vector>
+
+namespace probelights {
+
+// x >= 0 minimizing |A x - b| (A is m x n, row-major).
+std::vector<double> nonNegativeLeastSquares(const std::vector<double>& A, int m, int n,
+                                            const std::vector<double>& b);
+
+}  // namespace probelights

@@ -1,0 +1,100 @@
+#include "probelights/refit.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "parallel.h"
+#include "probelights/error.h"
+#include "probelights/nnls.h"
+
+namespace probelights {
+
+namespace {
+
+Vec3 rotateAbout(const Vec3& d, const Vec3& axis, double angle) {  // Rodrigues' rotation
+  const Vec3 k = (1.0 / axis.length()) * axis;
+  const Vec3 kxd{k.y * d.z - k.z * d.y, k.z * d.x - k.x * d.z, k.x * d.y - k.y * d.x};
+  return std::cos(angle) * d + std::sin(angle) * kxd + (dot(k, d) * (1 - std::cos(angle))) * k;
+}
+
+// Coordinate descent on the lights' directions against the luminance irradiance on the fit normals, colours
+// fixed. The sum of the lights' irradiance per normal is kept, so a trial move of one light costs one pass
+// over the normals.
+void moveDirections(const std::vector<Vec3>& normals, const std::vector<Rgb>& truth,
+                    std::vector<Light>& lights) {
+  const std::size_t m = normals.size();
+  std::vector<double> target(m), sum(m, 0.0), term(m), trial(m);
+  for (std::size_t i = 0; i < m; ++i) target[i] = luminance(truth[i]);
+  auto contribution = [&](const Light& l, std::vector<double>& out) {
+    const double y = luminance(l.rgb);
+    for (std::size_t i = 0; i < m; ++i) out[i] = y * std::max(0.0, dot(normals[i], l.direction));
+  };
+  for (const Light& l : lights) {
+    contribution(l, term);
+    for (std::size_t i = 0; i < m; ++i) sum[i] += term[i];
+  }
+  auto error = [&](const std::vector<double>& s) {
+    double e = 0;
+    for (std::size_t i = 0; i < m; ++i) e += (s[i] - target[i]) * (s[i] - target[i]);
+    return e;
+  };
+  double current = error(sum);
+  for (double step : {4.0, 2.0, 1.0, 0.5})
+    for (Light& l : lights) {
+      const Vec3 d = l.direction;
+      const Vec3 t1 = std::abs(d.z) < 0.9 ? Vec3{-d.y, d.x, 0} : Vec3{0, -d.z, d.y};
+      const Vec3 t2{d.y * t1.z - d.z * t1.y, d.z * t1.x - d.x * t1.z, d.x * t1.y - d.y * t1.x};
+      for (const Vec3& axis : {t1, t2})
+        for (double sign : {1.0, -1.0}) {
+          contribution(l, term);
+          Light moved = l;
+          moved.direction = rotateAbout(l.direction, axis, sign * step * kPi / 180);
+          contribution(moved, trial);
+          for (std::size_t i = 0; i < m; ++i) trial[i] = sum[i] - term[i] + trial[i];
+          const double e = error(trial);
+          if (e < current) current = e, sum.swap(trial), l.direction = moved.direction;
+        }
+    }
+}
+
+}  // namespace
+
+std::vector<Light> refitIrradiance(const Evaluator& evaluator, const std::vector<Light>& lights,
+                                   double* energyShift, bool moveDirs) {
+  // Fitted on 1024 normals, not the 256 the error is measured on, so the error of a refit is not flattered.
+  const auto& normals = evaluator.fitNormals();
+  const auto& truth = evaluator.fitTruth();
+  if (truth.empty()) throw Error("the irradiance refit needs an evaluator made for it (diffuse, forRefit)");
+  if (lights.size() > kMaxRefitLights)
+    throw Error("the irradiance refit takes at most " + std::to_string(kMaxRefitLights) + " lights, got " +
+                std::to_string(lights.size()));
+  const int m = static_cast<int>(normals.size()), n = static_cast<int>(lights.size());
+  std::vector<Light> out = lights;
+  if (n == 0) return out;
+  auto solveColours = [&](std::vector<Light>& ls) {
+    std::vector<double> A(static_cast<std::size_t>(m) * n);
+    for (int i = 0; i < m; ++i)
+      for (int j = 0; j < n; ++j) A[i * n + j] = std::max(0.0, dot(normals[i], ls[j].direction));
+    for (int c = 0; c < 3; ++c) {
+      std::vector<double> b(m);
+      for (int i = 0; i < m; ++i) b[i] = truth[i][c];
+      std::vector<double> x = nonNegativeLeastSquares(A, m, n, b);
+      for (int j = 0; j < n; ++j) ls[j].rgb[c] = x[j];
+    }
+  };
+  solveColours(out);
+  for (int round = 0; moveDirs && round < 3; ++round) {
+    moveDirections(normals, truth, out);
+    solveColours(out);
+  }
+  double before = 0, after = 0;
+  for (int j = 0; j < n; ++j)
+    for (int c = 0; c < 3; ++c) before += lights[j].rgb[c], after += out[j].rgb[c];
+  double total = 0;
+  for (const Light& l : out) total += luminance(l.rgb);
+  for (Light& l : out) l.energyShare = total > 0 ? luminance(l.rgb) / total : 0.0;
+  if (energyShift) *energyShift = before > 0 ? after / before - 1.0 : 0.0;
+  return out;
+}
+
+}  // namespace probelights

@@ -1,0 +1,44 @@
+// lightsFromRegions: a region's angular radius and the centroid weights.
+#include <gtest/gtest.h>
+
+#include "probelights/bake.h"
+#include "test_probes.h"
+
+namespace probelights {
+namespace {
+
+using testing::bakeWith;
+using testing::makeProbe;
+
+const WorkingResolution kFull{WorkingResolution::Mode::Full, 0};
+
+TEST(LightsFromRegions, AngularRadiusOfAUniformCap) {
+  // A uniform cap of 15 degrees around +Z on a black sphere: one light, radius ~15 degrees.
+  const double cap = 15 * kPi / 180;
+  auto t = makeProbe(2048, 1024, ProjectionKind::LatLong, [&](int, int y) {
+    double el = kPi / 2 - kPi * (y + 0.5) / 1024;
+    return kPi / 2 - el <= cap ? Rgb{1, 1, 1} : Rgb{0, 0, 0};
+  });
+  auto r = bakeWith(t.probe, Method::Variance, 1);
+  ASSERT_EQ(r.lights.size(), 1u);
+  EXPECT_NEAR(r.lights[0].angularRadius, cap, 0.01);
+  EXPECT_NEAR(r.lights[0].direction.z, 1.0, 1e-12);
+}
+
+TEST(LightsFromRegions, Energy2CentroidLeansTowardsTheBrightestPixels) {
+  auto t = makeProbe(256, 128, ProjectionKind::LatLong, [](int x, int y) {
+    if (x == 100 && y == 64) return Rgb{50, 50, 50};
+    return x >= 90 && x < 130 && y >= 60 && y < 68 ? Rgb{1, 1, 1} : Rgb{0, 0, 0};
+  });
+  BakeOptions o;
+  o.lights = 1;
+  o.resolution = kFull;
+  auto energy = bake(t.probe, o);
+  o.centroid = CentroidWeight::Energy2;
+  auto energy2 = bake(t.probe, o);
+  Vec3 hot = *t.probe.projection().direction(100.5 / 256, 64.5 / 128);
+  EXPECT_GT(dot(energy2.lights[0].direction, hot), dot(energy.lights[0].direction, hot));
+}
+
+}  // namespace
+}  // namespace probelights
