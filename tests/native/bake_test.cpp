@@ -51,12 +51,7 @@ TEST(Bake, UniformProbeTotalIsFourPiL) {
   }
 }
 
-// Seed 000, Figure 2: two unequal sources side by side. Median cut's equal-energy cut passes through the
-
-// brighter one; variance minimization cuts between them.
-
 // A sky gradient with a small sun: a probe shaped like the real ones.
-
 testing::TestProbe sunnySky(int W, int H) {
   return makeProbe(W, H, ProjectionKind::LatLong, [=](int x, int y) {
     double v = (y + 0.5) / H;
@@ -241,9 +236,7 @@ TEST(Bake, RejectsZeroAndAbsurdLightCounts) {
 }
 
 // Pixels across the whole float range at once: zeros, denormals, 1e-30, 1e30 and values near FLT_MAX. Every method
-
 // must stay finite and conserve energy (sums are in double: 1e38 x 4pi x 1e5 pixels is far from overflow).
-
 TEST(Bake, HardProbeTheWholeFloatRangeInOneProbe) {
   const float values[] = {0.0f, 1e-42f, 1e-30f, 1.0f, 1e30f, 3.0e38f};
   std::mt19937 rng(99);

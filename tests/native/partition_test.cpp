@@ -25,6 +25,8 @@ TEST(MedianCut, PowerOfTwoGivesEqualEnergyRegionsOnAUniformProbe) {
   }
 }
 
+// Viriyothai & Debevec 2009, Figure 2: two unequal sources side by side. Median cut's equal-energy cut passes
+// through the brighter one; variance minimization cuts between them.
 TEST(PartitionSphere, MedianCutSplitsTheBrighterSourceVarianceSeparatesThem) {
   const int W = 512, H = 256, ax = 150, bx = 360, cy = 128, radius = 12;
   auto inDisc = [&](int x, int y, int cx) {

@@ -223,7 +223,7 @@ TEST(ShSampler, OffsetRemedyIsPositiveButFlatter) {
 }
 
 TEST(ShSampler, ImportanceSamplingIrradianceBeatsUniformAndOffset) {
-  // Seed 003's claim on a real sunny probe: at equal sample count the epsilon-clamped sampler's variance is lower
+  // Berger 2011's claim on a real sunny probe: at equal sample count the epsilon-clamped sampler's variance is lower
   // than uniform sampling's and than that of the function offset until positive (exact variances, no randomness),
   // for surfaces facing the sky. epsilon = 0.1: at 0.01 the pdf can collapse where the ringing reconstruction is
   // small but the real light is not, and lose to uniform sampling (native/bench/sh_benchmark.cpp shows the grid).

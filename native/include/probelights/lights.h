@@ -12,7 +12,8 @@
 namespace probelights {
 
 // Which pixels' weight places a light inside its region: energy = Y dOmega (the centroid of the region's
-// light), energy2 = Y^2 dOmega (seed 001's "Centroid Formula 2": pulled towards the brightest pixels).
+// light), energy2 = Y^2 dOmega (S.-Y. Yang, "Environment Lights", CSIE5098 homework 3, National Taiwan
+// University, 2015: "Centroid Formula 2", pulled towards the brightest pixels).
 enum class CentroidWeight { Energy, Energy2 };
 std::string toString(CentroidWeight weight);            // "energy", "energy2"
 CentroidWeight parseCentroid(const std::string& name);  // throws Error naming the choices

@@ -15,7 +15,7 @@ struct PixelSums {
   double solidAngle = 0;    // sum of dOmega
   double energy = 0;        // sum of w
   Vec3 moment;              // sum of w d
-  double energy2 = 0;       // sum of w Y   (seed 001's L^2 weighting)
+  double energy2 = 0;       // sum of w Y   (Yang 2015's "Centroid Formula 2": L^2 weighting)
   Vec3 moment2;             // sum of w Y d
   long long litPixels = 0;  // pixels with w > 0
 

@@ -1,5 +1,6 @@
 // Importance sampling of a function given by SH coefficients: hierarchical sample warping (Jarosz, Carr &
-// Jensen 2009) made robust to a reconstruction that goes negative (Berger 2011, seed 003).
+// Jensen 2009) made robust to a reconstruction that goes negative (Berger 2011, "Approximate importance sampling of functions reconstructed
+// from spherical harmonics").
 //
 // Domain: the unit square (s, t) mapped to the sphere by z = cos(theta) = 1 - 2s, phi = -pi + 2 pi t, which
 // is area-preserving (dOmega = 4 pi ds dt). A quadtree of `depth` levels splits every node into quadrants;
