@@ -7,7 +7,7 @@ packages=(cmake g++ make pkg-config libopenimageio-dev openimageio-tools nlohman
           python3-venv
           libbenchmark-dev fonts-dejavu-core)
 if [[ "${1:-}" == "--test" ]]; then
-  packages+=(libgtest-dev googletest python3-pytest blender xvfb xauth libegl1 libgl1-mesa-dri)
+  packages+=(libgtest-dev googletest python3-pytest blender xvfb xauth libegl1 libgl1-mesa-dri clang-format)
 fi
 missing=()
 for p in "${packages[@]}"; do

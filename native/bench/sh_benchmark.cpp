@@ -1,9 +1,10 @@
 // Spherical harmonics: what the SH sampler buys a Monte Carlo renderer, and what it costs.
 //   build/bin/probelights_sh_bench
-// BM_IrradianceVariance: per-sample variance of the irradiance estimator on real sunny probes (exact, no random
-// numbers; sh_variance.h) for uniform sampling, the function offset until positive (Jarosz et al.'s remedy) and
-// Berger's epsilon clamping, as counters; "x_uniform" and "x_offset" are how many times fewer samples the clamped
-// sampler needs for the same noise. BM_Project / BM_Sample: the time a projection and a sample cost.
+// BM_IrradianceVariance: per-sample variance of the irradiance estimator on real sunny probes (exact, no
+// random numbers; sh_variance.h) for uniform sampling, the function offset until positive (Jarosz et al.'s
+// remedy) and Berger's epsilon clamping, as counters; "x_uniform" and "x_offset" are how many times fewer
+// samples the clamped sampler needs for the same noise. BM_Project / BM_Sample: the time a projection and a
+// sample cost.
 #include <benchmark/benchmark.h>
 
 #include <filesystem>

@@ -60,9 +60,10 @@ void printSummary(const BakeArgs& a, const Probe& probe, const BakeOptions& opti
               toString(probe.projection().kind()).c_str());
   for (const auto& note : probe.report().notes) std::printf("note       %s\n", note.c_str());
   for (const auto& note : r.notes) std::printf("note       %s\n", note.c_str());
-  std::printf("method     %s, %zu lights, cuts on a %dx%d grid (cell %d px)\n", toString(options.method).c_str(),
-              r.lights.size(), (probe.width() + r.cellSize - 1) / r.cellSize,
-              (probe.height() + r.cellSize - 1) / r.cellSize, r.cellSize);
+  std::printf("method     %s, %zu lights, cuts on a %dx%d grid (cell %d px)\n",
+              toString(options.method).c_str(), r.lights.size(),
+              (probe.width() + r.cellSize - 1) / r.cellSize, (probe.height() + r.cellSize - 1) / r.cellSize,
+              r.cellSize);
   std::printf("\n   #  direction (x, y, z)          rgb (W/m^2)                      share  radius(deg)\n");
   for (std::size_t i = 0; i < r.lights.size(); ++i) {
     const Light& l = r.lights[i];

@@ -18,7 +18,8 @@ nlohmann::json bakeToJson(const std::string& sourcePath, const Probe& probe, con
   notes.insert(notes.end(), result.notes.begin(), result.notes.end());
   nlohmann::json evaluation = nullptr;
   if (ev.done) {
-    evaluation = {{"effects", effectsToString(ev.effects)}, {"refit", ev.refit},
+    evaluation = {{"effects", effectsToString(ev.effects)},
+                  {"refit", ev.refit},
                   {"error", "relative RMS of luminance vs the probe"}};
     if (ev.effects & kDiffuse) evaluation["diffuse"] = ev.errors.diffuse;
     if (ev.effects & kShadow) evaluation["shadow"] = ev.errors.shadow;
@@ -40,9 +41,10 @@ nlohmann::json bakeToJson(const std::string& sourcePath, const Probe& probe, con
         {"negative_samples", probe.report().negativeSamples},
         {"non_finite_samples", probe.report().nonFiniteSamples}}},
       {"method", toString(options.method)},
-      {"sh", options.method == Method::SphericalHarmonics
-                 ? nlohmann::json{{"bands", options.shBands}, {"epsilon", options.shEpsilon}, {"depth", options.shDepth}}
-                 : nlohmann::json(nullptr)},
+      {"sh", options.method == Method::SphericalHarmonics ? nlohmann::json{{"bands", options.shBands},
+                                                                           {"epsilon", options.shEpsilon},
+                                                                           {"depth", options.shDepth}}
+                                                          : nlohmann::json(nullptr)},
       {"centroid", options.centroid == CentroidWeight::Energy ? "energy" : "energy2"},
       {"requested_lights", options.lights},
       {"horizon_split", result.horizonSplit},

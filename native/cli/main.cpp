@@ -1,6 +1,6 @@
-// probelights: the command-line tool, thin over the library: the usage and the dispatch to one file per command
-// (bake_command.cpp, sh_commands.cpp, tradeoff_command.cpp; their options in options.h).
-// Exit codes: 0 success, 2 bad input or request (one line on stderr), 1 an unexpected internal failure.
+// probelights: the command-line tool, thin over the library: the usage and the dispatch to one file per
+// command (bake_command.cpp, sh_commands.cpp, tradeoff_command.cpp; their options in options.h). Exit codes:
+// 0 success, 2 bad input or request (one line on stderr), 1 an unexpected internal failure.
 #include <cstdio>
 #include <map>
 #include <string>
@@ -21,9 +21,10 @@ const char* kUsage =
        probelights tradeoff PROBE [--effects diffuse,shadow,glossy] [--counts 1,2,4,...] [--methods ...]
                               [--no-refit] [-o tradeoff.json] [--plot tradeoff.png]
 
-PROBE is any image OpenImageIO reads. sh: real SH coefficients (Sloan order, orthonormal, Condon-Shortley phase,
-theta from +Z) of the radiance, or with --irradiance of the irradiance. sample: directions and pdfs from the
-SH importance sampler (Jarosz et al. 2009 warping with Berger's epsilon clamping) of the probe's luminance.
+PROBE is any image OpenImageIO reads. sh: real SH coefficients (Sloan order, orthonormal, Condon-Shortley
+phase, theta from +Z) of the radiance, or with --irradiance of the irradiance. sample: directions and pdfs
+from the SH importance sampler (Jarosz et al. 2009 warping with Berger's epsilon clamping) of the probe's
+luminance.
 
 options:
   --method median-cut|variance|sh   partition algorithm (default variance); sh = SH importance warping

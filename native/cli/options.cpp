@@ -7,7 +7,8 @@
 
 namespace probelights::cli {
 
-std::vector<std::string> parseOptions(const std::vector<std::string>& argv, const std::vector<Option>& table) {
+std::vector<std::string> parseOptions(const std::vector<std::string>& argv,
+                                      const std::vector<Option>& table) {
   std::vector<std::string> positional;
   for (std::size_t i = 0; i < argv.size(); ++i) {
     const std::string& a = argv[i];
@@ -45,8 +46,10 @@ std::string oneProbe(const std::vector<std::string>& positional, const std::stri
 }
 
 void addProbeOptions(std::vector<Option>& table, ProbeOptions& options) {
-  table.push_back({{"--projection"}, [&](const std::string& v) { options.projection = parseProjectionChoice(v); }});
-  table.push_back({{"--nonfinite"}, [&](const std::string& v) { options.nonFinite = parseNonFinitePolicy(v); }});
+  table.push_back(
+      {{"--projection"}, [&](const std::string& v) { options.projection = parseProjectionChoice(v); }});
+  table.push_back(
+      {{"--nonfinite"}, [&](const std::string& v) { options.nonFinite = parseNonFinitePolicy(v); }});
 }
 
 double parseReal(const std::string& flag, const std::string& text) {

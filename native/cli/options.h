@@ -19,7 +19,7 @@ struct UsageError : Error {
 
 // One option of a command: its spellings and what it does with its value (a flag takes none).
 struct Option {
-  std::vector<std::string> names;                  // e.g. {"--lights", "-n"}
+  std::vector<std::string> names;                 // e.g. {"--lights", "-n"}
   std::function<void(const std::string&)> apply;  // with the value ("" for a flag)
   bool flag = false;
 };
@@ -41,7 +41,7 @@ void addProbeOptions(std::vector<Option>& table, ProbeOptions& options);
 double parseReal(const std::string& flag, const std::string& text);
 int parseCount(const std::string& flag, const std::string& text);
 double parseTolerance(const std::string& flag, const std::string& text);  // "1%" or "0.01"
-std::vector<std::string> splitList(const std::string& text);               // "a,b,c"
+std::vector<std::string> splitList(const std::string& text);              // "a,b,c"
 
 // JSON to a file, or standard output for "-"; indented by `indent`, by default compact on standard output and
 // by 1 in a file.

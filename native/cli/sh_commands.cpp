@@ -1,5 +1,5 @@
-// probelights sh and probelights sample: the probe's SH coefficients, and samples of its SH importance sampler
-// (Jarosz et al. 2009 warping, Berger 2011 epsilon clamping). Usage in main.cpp.
+// probelights sh and probelights sample: the probe's SH coefficients, and samples of its SH importance
+// sampler (Jarosz et al. 2009 warping, Berger 2011 epsilon clamping). Usage in main.cpp.
 #include "commands.h"
 #include "options.h"
 #include "probelights/sh_sampler.h"

@@ -1,4 +1,7 @@
-// The tradeoff plot of `probelights tradeoff --plot`, drawn with OpenImageIO: a CLI concern, not the library's.
+// The tradeoff plot of `probelights tradeoff --plot`, drawn with OpenImageIO: a CLI concern, not the
+// library's.
+#include "tradeoff_plot.h"
+
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 
@@ -10,7 +13,6 @@
 #include <map>
 
 #include "probelights/error.h"
-#include "tradeoff_plot.h"
 
 namespace probelights::cli {
 
@@ -54,8 +56,7 @@ void writeTradeoffPlot(const std::vector<TradeoffRow>& rows, unsigned effects, c
     return H - bottom - (std::log10(pct) - le0) / std::max(1e-9, le1 - le0) * (H - top - bottom);
   };
   auto text = [&](int x, int y, const std::string& s, int size, const float* colour) {
-    OIIO::ImageBufAlgo::render_text(img, x, y, s, size, font,
-                                    OIIO::cspan<float>(colour, 3));
+    OIIO::ImageBufAlgo::render_text(img, x, y, s, size, font, OIIO::cspan<float>(colour, 3));
   };
   for (double d = lt0; d <= lt1; ++d) {  // decades
     int x = static_cast<int>(X(std::pow(10, d)));

@@ -1,14 +1,18 @@
 // Linked only into the Blender add-on's portable modules (addon/CMakeLists.txt): keeps them loadable on glibc
-// older than the one they are built against (Debian 12: 2.36), down to what blender.org's Blender needs (2.28).
+// older than the one they are built against (Debian 12: 2.36), down to what blender.org's Blender needs
+// (2.28).
 //
 // The statically linked libstdc++ and libgcc reference four symbols that only new glibc versions define. The
 // link redirects them here (-Wl,--wrap=NAME turns every reference to NAME into __wrap_NAME):
-//   pthread_create, pthread_join, pthread_once, __pthread_key_create   @GLIBC_2.34 (libpthread moved into libc)
+//   pthread_create, pthread_join, pthread_once, __pthread_key_create
+//                           @GLIBC_2.34 (libpthread moved into libc)
 //       -> the same functions at their original version GLIBC_2.2.5, which every glibc since 2002 exports (in
 //          libpthread.so.0 before 2.34, which the module also names as NEEDED; in libc.so.6 after);
-//   __libc_single_threaded  @GLIBC_2.32 (libstdc++ skips atomic reference counts while the process has one thread)
+//   __libc_single_threaded  @GLIBC_2.32 (libstdc++ skips atomic reference counts while the process has one
+//                           thread)
 //       -> a constant 0: "maybe multi-threaded", always the atomic path, correct in any process;
-//   _dl_find_object  @GLIBC_2.35 (libgcc's unwinder finds the .eh_frame_hdr of the object holding a return address)
+//   _dl_find_object         @GLIBC_2.35 (libgcc's unwinder finds the .eh_frame_hdr of the object holding a
+//                           return address)
 //       -> the same answer found with dl_iterate_phdr (GLIBC_2.2.5), the way libgcc did before glibc had it.
 // tests/python/test_portable_module.py checks the versions the modules need and that exceptions still unwind.
 #include <dlfcn.h>
@@ -38,7 +42,8 @@ __attribute__((visibility("hidden"))) int __wrap_pthread_join(pthread_t thread, 
 __attribute__((visibility("hidden"))) int __wrap_pthread_once(pthread_once_t* once, void (*init)()) {
   return probelights_pthread_once(once, init);
 }
-__attribute__((visibility("hidden"))) int __wrap___pthread_key_create(pthread_key_t* key, void (*destructor)(void*)) {
+__attribute__((visibility("hidden"))) int __wrap___pthread_key_create(pthread_key_t* key,
+                                                                      void (*destructor)(void*)) {
   return probelights_pthread_key_create(key, destructor);
 }
 

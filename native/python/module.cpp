@@ -7,7 +7,6 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-
 #include "probelights/bake.h"
 #include "probelights/error.h"
 #include "probelights/evaluate.h"
@@ -174,7 +173,8 @@ py::dict bakeFile(const std::string& path, const std::string& projection, const 
 }
 #endif
 
-// The tradeoff grid (tradeoff.h) as a list of dicts: method, lights, made, resolution, refit, bake_ms, and the errors.
+// The tradeoff grid (tradeoff.h) as a list of dicts: method, lights, made, resolution, refit, bake_ms, and
+// the errors.
 py::list tradeoffRows(Pixels pixels, const std::string& projection, const std::string& effects,
                       const std::vector<int>& counts, const std::vector<std::string>& methods, bool refit,
                       int evaluatorWidth, const std::string& nonfinite) {
@@ -198,7 +198,8 @@ py::list tradeoffRows(Pixels pixels, const std::string& projection, const std::s
   py::list out;
   for (const TradeoffRow& r : rows) {
     py::dict d(py::arg("method") = toString(r.method), py::arg("lights") = r.lights, py::arg("made") = r.made,
-               py::arg("resolution") = r.resolution, py::arg("refit") = r.refit, py::arg("bake_ms") = r.bakeMs);
+               py::arg("resolution") = r.resolution, py::arg("refit") = r.refit,
+               py::arg("bake_ms") = r.bakeMs);
     if (e & kDiffuse) d["diffuse"] = r.errors.diffuse;
     if (e & kShadow) d["shadow"] = r.errors.shadow;
     if (e & kGlossy) d["glossy"] = r.errors.glossy;
@@ -240,7 +241,8 @@ py::tuple shSample(Pixels pixels, int bands, double epsilon, int samples, int de
   {
     py::gil_scoped_release release;
     Probe probe(view, kind, policy);
-    drawn = ShSampler(bands, projectProbe(probe, bands).luminance(), epsilon, depth).sampleSeeded(samples, seed);
+    drawn =
+        ShSampler(bands, projectProbe(probe, bands).luminance(), epsilon, depth).sampleSeeded(samples, seed);
   }
   py::array_t<double> dirs({static_cast<py::ssize_t>(drawn.size()), py::ssize_t{3}}),
       pdfs(static_cast<py::ssize_t>(drawn.size()));
@@ -259,10 +261,12 @@ PYBIND11_MODULE(_probelights, m) {
   m.doc() = "probelights: turn an HDR light probe into N lights that carry exactly its energy";
   py::register_exception<Error>(m, "Error", PyExc_ValueError);
   m.def("tradeoff", &tradeoffRows, py::arg("pixels"), py::kw_only(), py::arg("projection") = "latlong",
-        py::arg("effects") = "diffuse,shadow", py::arg("counts") = std::vector<int>{4, 8, 16, 32, 64, 128, 256},
-        py::arg("methods") = std::vector<std::string>{"median-cut", "variance", "sh"}, py::arg("refit") = true,
-        py::arg("evaluator_width") = 2048, py::arg("nonfinite") = "error",
-        "What accuracy costs in time: one row per (method, count, refit) with bake_ms and each effect's error.");
+        py::arg("effects") = "diffuse,shadow",
+        py::arg("counts") = std::vector<int>{4, 8, 16, 32, 64, 128, 256},
+        py::arg("methods") = std::vector<std::string>{"median-cut", "variance", "sh"},
+        py::arg("refit") = true, py::arg("evaluator_width") = 2048, py::arg("nonfinite") = "error",
+        "What accuracy costs in time: one row per (method, count, refit) with bake_ms and each effect's "
+        "error.");
   m.def("bake", &bakePixels, py::arg("pixels"), py::kw_only(), py::arg("projection") = "latlong",
         py::arg("method") = "variance", py::arg("lights") = 16, py::arg("centroid") = "energy",
         py::arg("resolution") = "auto", py::arg("horizon") = false, py::arg("bands") = 8,

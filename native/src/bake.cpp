@@ -44,7 +44,8 @@ BakeResult bake(const Probe& probe, const BakeOptions& options) {
   if (options.lights < 1)
     throw Error("asked for " + std::to_string(options.lights) + " lights: ask for at least 1");
   if (options.lights > kMaxLights)
-    throw Error("asked for " + std::to_string(options.lights) + " lights: at most " + std::to_string(kMaxLights));
+    throw Error("asked for " + std::to_string(options.lights) + " lights: at most " +
+                std::to_string(kMaxLights));
   BakeResult result;
   if (options.method == Method::SphericalHarmonics) {
     ShLightResult sh = shLights(probe, {options.lights, options.shBands, options.shEpsilon, options.shDepth});

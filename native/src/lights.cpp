@@ -1,11 +1,10 @@
 #include "probelights/lights.h"
 
-#include "probelights/names.h"
-
 #include <algorithm>
 #include <cmath>
 
 #include "parallel.h"
+#include "probelights/names.h"
 
 namespace probelights {
 

@@ -60,7 +60,8 @@ MomentTable::MomentTable(const Probe& probe, int cellSize)
 
   std::vector<PixelSums> rowTotals(cellsY);
   std::vector<long long> rowLitCells(cellsY);
-  // Each cell row is summed by one thread in a fixed order (the table is bit-identical whatever the thread count).
+  // Each cell row is summed by one thread in a fixed order (the table is bit-identical whatever the thread
+  // count).
   sat_ = SummedAreaTable<5>(cellsX, cellsY, [&](int cy, std::span<Values> out) {
     thread_local std::vector<PixelSums> sums;
     sums.assign(cellsX, PixelSums{});
@@ -73,8 +74,8 @@ MomentTable::MomentTable(const Probe& probe, int cellSize)
       total += c;
       litCells += c.litPixels > 0;
       if (cells_) {
-        cells_[static_cast<std::size_t>(cy) * cellsX + cx] = {{c.rgb[0], c.rgb[1], c.rgb[2]}, c.solidAngle, c.energy2,
-                                                              {c.moment2.x, c.moment2.y, c.moment2.z}};
+        cells_[static_cast<std::size_t>(cy) * cellsX + cx] = {
+            {c.rgb[0], c.rgb[1], c.rgb[2]}, c.solidAngle, c.energy2, {c.moment2.x, c.moment2.y, c.moment2.z}};
       }
     }
     rowTotals[cy] = total;

@@ -1,7 +1,7 @@
 // Parallel loops: OpenImageIO's thread pool where the library links OpenImageIO (CLI, tests, the full Python
-// module), or a few std::threads in the portable build that the Blender add-on loads (it must link nothing but
-// libc: see native/CMakeLists.txt). Every caller computes item i from i alone, so results are bit-identical
-// whichever backend runs and however many threads it has.
+// module), or a few std::threads in the portable build that the Blender add-on loads (it must link nothing
+// but libc: see native/CMakeLists.txt). Every caller computes item i from i alone, so results are
+// bit-identical whichever backend runs and however many threads it has.
 #pragma once
 
 #include <cstdint>

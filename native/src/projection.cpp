@@ -19,7 +19,9 @@ constexpr NameTable<ProjectionKind, 8> kProjections{{{ProjectionKind::LatLong, "
 }  // namespace
 
 std::string toString(ProjectionKind kind) { return nameOf(kProjections, kind); }
-ProjectionKind parseProjection(const std::string& name) { return parseName(kProjections, "projection", name); }
+ProjectionKind parseProjection(const std::string& name) {
+  return parseName(kProjections, "projection", name);
+}
 
 namespace {
 

@@ -1,9 +1,9 @@
 #include "probelights/sh_sampler.h"
 
 #include <algorithm>
-#include <random>
 #include <cmath>
 #include <cstdio>
+#include <random>
 #include <string>
 
 #include "probelights/error.h"

@@ -11,7 +11,8 @@ SummedAreaTable<K>::SummedAreaTable(int width, int height,
                                     const std::function<void(int, std::span<Values>)>& rowValues)
     : width_(width),
       height_(height),
-      table_(new double[static_cast<std::size_t>(width + 1) * (height + 1) * K]) {  // not zero-filled: written once
+      table_(new double[static_cast<std::size_t>(width + 1) * (height + 1) *
+                        K]) {  // not zero-filled: written once
   std::fill_n(entry(0, 0), (width + 1) * K, 0.0);
   // Pass 1: table row y + 1 holds the prefix sums along row y.
   parallelFor(height, [&](std::int64_t y) {

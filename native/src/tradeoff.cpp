@@ -59,16 +59,17 @@ AutoCountResult autoCount(const Probe& probe, const Evaluator& evaluator, BakeOp
     best.tried.push_back({n, e.worst(evaluator.effects())});
     return std::pair{std::move(r), e};
   };
-  // Doubling until the tolerance is met, then bisection between the last miss and the first hit. The error is not
-  // monotonic in the count (shadows of many small lights can be worse than of a few), so a miss keeps the count
-  // with the lowest error seen (fewest lights on a tie), and the doubling stops once two doublings past that count
-  // did not improve on it: a miss never costs more lights than a count that did better.
+  // Doubling until the tolerance is met, then bisection between the last miss and the first hit. The error is
+  // not monotonic in the count (shadows of many small lights can be worse than of a few), so a miss keeps the
+  // count with the lowest error seen (fewest lights on a tie), and the doubling stops once two doublings past
+  // that count did not improve on it: a miss never costs more lights than a count that did better.
   int lo = 0, hi = 0;
   double bestError = std::numeric_limits<double>::infinity();
   for (int n = 1; n <= maxLights; n *= 2) {
     auto [r, e] = attempt(n);
     const double worst = e.worst(evaluator.effects());
-    const bool fewerLit = static_cast<int>(r.lights.size()) < n;  // more lights than lit pixels: more cannot help
+    const bool fewerLit =
+        static_cast<int>(r.lights.size()) < n;  // more lights than lit pixels: more cannot help
     if (worst <= tolerance) {
       hi = n;
       best.bake = std::move(r), best.errors = e, best.lights = n, best.met = true;
@@ -96,8 +97,7 @@ AutoCountResult autoCount(const Probe& probe, const Evaluator& evaluator, BakeOp
 }
 
 EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOptions a) {
-  if (!(a.maxError >= 0 && a.maxError < 1))
-  {
+  if (!(a.maxError >= 0 && a.maxError < 1)) {
     char got[32];
     std::snprintf(got, sizeof got, "%g", a.maxError);
     throw Error(std::string("the error tolerance is a fraction in (0, 1), e.g. 0.01 for 1 %; got ") + got);

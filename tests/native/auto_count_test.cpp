@@ -1,5 +1,4 @@
 // The count chosen for an error tolerance.
-#include "probelights/tradeoff.h"
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,12 +1,13 @@
 // bake(): energy conservation, any N, hard small probes (numerically stable: the whole float range, a hot
 // pixel, all black, the seam), the horizon split, working resolutions, determinism.
+#include "probelights/bake.h"
+
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
-#include "probelights/bake.h"
 #include "probelights/error.h"
 #include "probelights/median_cut.h"
 #include "probelights/variance_minimization.h"
@@ -186,7 +187,9 @@ TEST(Bake, HorizonFirstCutSeparatesSkyFromGroundAndNoLightMixesThem) {
     }
   // One light cannot be split; a probe lit on one side only has nothing to separate.
   EXPECT_FALSE(bakeWith(t.probe, Method::Variance, 1, kFull, true).horizonSplit);
-  auto skyOnly = makeProbe(64, 32, ProjectionKind::LatLong, [](int, int y) { return y < 16 ? Rgb{1, 1, 1} : Rgb{0, 0, 0}; });
+  auto skyOnly = makeProbe(64, 32, ProjectionKind::LatLong, [](int, int y) {
+    return y < 16 ? Rgb{1, 1, 1} : Rgb{0, 0, 0};
+  });
   auto r = bakeWith(skyOnly.probe, Method::Variance, 8, kFull, true);
   EXPECT_FALSE(r.horizonSplit);
   EXPECT_EQ(r.lights.size(), 8u);
@@ -235,8 +238,9 @@ TEST(Bake, RejectsZeroAndAbsurdLightCounts) {
   EXPECT_THROW(bake(t.probe, o), Error);
 }
 
-// Pixels across the whole float range at once: zeros, denormals, 1e-30, 1e30 and values near FLT_MAX. Every method
-// must stay finite and conserve energy (sums are in double: 1e38 x 4pi x 1e5 pixels is far from overflow).
+// Pixels across the whole float range at once: zeros, denormals, 1e-30, 1e30 and values near FLT_MAX. Every
+// method must stay finite and conserve energy (sums are in double: 1e38 x 4pi x 1e5 pixels is far from
+// overflow).
 TEST(Bake, HardProbeTheWholeFloatRangeInOneProbe) {
   const float values[] = {0.0f, 1e-42f, 1e-30f, 1.0f, 1e30f, 3.0e38f};
   std::mt19937 rng(99);

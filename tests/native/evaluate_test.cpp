@@ -1,5 +1,6 @@
 // The evaluator: its ground truth against brute force and closed forms, and the effect names.
 #include "probelights/evaluate.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -15,11 +16,12 @@ TEST(Evaluator, UniformProbeClosedForms) {
   const double L = 2.0;
   auto t = testing::uniformProbe(1024, 512, ProjectionKind::LatLong, {L, L, L});
   Evaluator ev(t.probe, kDiffuse | kShadow);
-  // Irradiance pi L on every normal, to the pixel discretization of the cosine (measured 1.7e-6 at 1024 x 512).
+  // Irradiance pi L on every normal, to the pixel discretization of the cosine (measured 1.7e-6 at 1024 x
+  // 512).
   for (const Rgb& e : ev.diffuseTruth()) EXPECT_NEAR(e[0], kPi * L, 5e-6 * kPi * L);
-  // A ground point sees the upper hemisphere (pi L) less the cap of the unit sphere resting on the plane: half-angle
-  // a = asin(1 / D), axis at angle b from the zenith; the cap touches the horizon, so its projected solid angle is
-  // pi sin^2(a) cos(b).
+  // A ground point sees the upper hemisphere (pi L) less the cap of the unit sphere resting on the plane:
+  // half-angle a = asin(1 / D), axis at angle b from the zenith; the cap touches the horizon, so its
+  // projected solid angle is pi sin^2(a) cos(b).
   for (std::size_t i = 0; i < ev.groundPoints().size(); ++i) {
     const Vec3 p = ev.groundPoints()[i], toCentre = Vec3{0, 0, 1} - p;
     const double D = toCentre.length(), sina = 1 / D, cosb = toCentre.z / D;
@@ -30,8 +32,9 @@ TEST(Evaluator, UniformProbeClosedForms) {
 
 TEST(Evaluator, GroundTruthMatchesABruteForceSum) {
   const int W = 32, H = 16;
-  auto t = testing::makeProbe(W, H, ProjectionKind::LatLong,
-                              [](int x, int y) { return Rgb{0.1 + x % 5, 0.2 + y % 3, 1.0 + (x * y) % 7}; });
+  auto t = testing::makeProbe(W, H, ProjectionKind::LatLong, [](int x, int y) {
+    return Rgb{0.1 + x % 5, 0.2 + y % 3, 1.0 + (x * y) % 7};
+  });
   Evaluator ev(t.probe, kDiffuse | kShadow | kGlossy);
   const Projection& pr = t.probe.projection();
   for (std::size_t i = 0; i < ev.normals().size(); i += 17) {
@@ -58,8 +61,9 @@ TEST(Evaluator, GroundTruthMatchesABruteForceSum) {
 }
 
 TEST(Evaluator, OneLightPerPixelIsExactAndFewLightsAreNot) {
-  auto t = testing::makeProbe(16, 8, ProjectionKind::LatLong,
-                              [](int x, int y) { return Rgb{1.0 + x, 0.5 + y, 2.0}; });
+  auto t = testing::makeProbe(16, 8, ProjectionKind::LatLong, [](int x, int y) {
+    return Rgb{1.0 + x, 0.5 + y, 2.0};
+  });
   Evaluator ev(t.probe, kDiffuse | kShadow | kGlossy);
   BakeOptions o;
   o.lights = 16 * 8;

@@ -1,5 +1,6 @@
 // Non-negative least squares against a known solution.
 #include "probelights/nnls.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -6,11 +6,11 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <algorithm>
-#include <cstdio>
 #include <limits>
 
 #include "probelights/bake.h"
@@ -248,13 +248,15 @@ TEST(RealProbes, MirrorBallAndAngularResamplingsAgreeWithLatLong) {
         int sx = std::min(latlong.width() - 1, static_cast<int>(uv[0] * latlong.width()));
         int sy = std::min(latlong.height() - 1, static_cast<int>(uv[1] * latlong.height()));
         Rgb L = latlong.radiance(sx, sy);
-        for (int k = 0; k < 3; ++k) pixels[(static_cast<std::size_t>(y) * S + x) * 3 + k] = static_cast<float>(L[k]);
+        for (int k = 0; k < 3; ++k)
+          pixels[(static_cast<std::size_t>(y) * S + x) * 3 + k] = static_cast<float>(L[k]);
       }
     Probe resampled(ImageView{pixels.data(), S, S, 3}, kind);
     auto r = bake(resampled, o);
     EXPECT_EQ(r.lights.size(), 16u) << toString(kind);
-    // The sun (a few pixels, 64 % of the energy) lands in the same direction; its region is not the same as in the
-    // lat-long partition, so its mean direction moves by a few pixels (measured 0.95 and 0.90 degrees).
+    // The sun (a few pixels, 64 % of the energy) lands in the same direction; its region is not the same as
+    // in the lat-long partition, so its mean direction moves by a few pixels (measured 0.95 and 0.90
+    // degrees).
     EXPECT_GT(dot(brightest(r).direction, sun.direction), std::cos(2.0 * kPi / 180)) << toString(kind);
     // Total energy agrees to the resampling of a 1-2 pixel sun (nearest-pixel lookups).
     EXPECT_LE(maxRelativeDifference(r.totalRgb, reference.totalRgb), 0.03) << toString(kind);

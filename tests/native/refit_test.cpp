@@ -1,5 +1,6 @@
 // The irradiance refit on real probes.
 #include "probelights/refit.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -25,7 +26,8 @@ TEST(Refit, LowersTheDiffuseErrorOnRealProbes) {
     for (const Light& l : refit)
       for (double c : l.rgb) EXPECT_GE(c, 0.0);
   }
-  EXPECT_THROW(refitIrradiance(Evaluator(probe, kDiffuse), std::vector<Light>(3)), Error);  // not made for refit
+  EXPECT_THROW(refitIrradiance(Evaluator(probe, kDiffuse), std::vector<Light>(3)),
+               Error);  // not made for refit
 }
 
 TEST(Refit, MovingDirectionsLowersItFurther) {

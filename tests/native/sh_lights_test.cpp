@@ -40,7 +40,9 @@ TEST(ShLights, CellsHoldNearlyEqualReconstructedEnergy) {
     }
   double worst = 0;
   for (double e : energy) worst = std::max(worst, std::abs(e / total * n - 1.0));
-  EXPECT_LT(worst, 0.02);  // measured 1.4 % at 512 x 256  // relative to 1/N; what is left is the pixels' discretization of the cell borders
+  // Relative to 1/N (measured 1.4 % at 512 x 256); what is left is the pixels' discretization of the cell
+  // borders.
+  EXPECT_LT(worst, 0.02);
 }
 
 TEST(ShLights, BakeGivesNLightsThatCarryTheProbesEnergy) {
@@ -61,8 +63,9 @@ TEST(ShLights, BakeGivesNLightsThatCarryTheProbesEnergy) {
 }
 
 TEST(ShLights, SaysSoWhenCellsAreDark) {
-  auto t = testing::makeProbe(64, 32, ProjectionKind::LatLong,
-                              [](int x, int y) { return x == 10 && y == 5 ? Rgb{1, 1, 1} : Rgb{0, 0, 0}; });
+  auto t = testing::makeProbe(64, 32, ProjectionKind::LatLong, [](int x, int y) {
+    return x == 10 && y == 5 ? Rgb{1, 1, 1} : Rgb{0, 0, 0};
+  });
   BakeOptions o;
   o.method = Method::SphericalHarmonics;
   o.lights = 8;

@@ -1,9 +1,8 @@
-// The SH sampler: chi-square goodness of fit of sample() against pdf() (as Mitsuba's warp tests), pdf normalization
-// and its lower bound, and Berger's limits (epsilon = 0 is Jarosz, 1/2 is uniform), on a positive function,
-// Berger's blocky function reconstructed with 6 bands (negative ringing) and a real sunny probe.
+// The SH sampler: chi-square goodness of fit of sample() against pdf() (as Mitsuba's warp tests), pdf
+// normalization and its lower bound, and Berger's limits (epsilon = 0 is Jarosz, 1/2 is uniform), on a
+// positive function, Berger's blocky function reconstructed with 6 bands (negative ringing) and a real sunny
+// probe.
 #include "probelights/sh_sampler.h"
-#include "probelights/sh_variance.h"
-#include "probelights/error.h"
 
 #include <gtest/gtest.h>
 
@@ -11,6 +10,8 @@
 #include <filesystem>
 #include <random>
 
+#include "probelights/error.h"
+#include "probelights/sh_variance.h"
 #include "test_probes.h"
 
 namespace probelights {
@@ -45,15 +46,18 @@ double gammaP(double a, double x) {
   return 1 - std::exp(-x + a * std::log(x) - lga) * h;
 }
 
-// Chi-square test of samples against the sampler's own pdf on a grid of bins in (s, t), aligned with the tree so
-// the expected counts are exact sums of the piecewise-constant pdf. Bins expecting < 5 are pooled. Returns p.
-double chiSquare(const ShSampler& sampler, int samples, std::uint64_t seed, const ShSampler* drawFrom = nullptr) {
+// Chi-square test of samples against the sampler's own pdf on a grid of bins in (s, t), aligned with the tree
+// so the expected counts are exact sums of the piecewise-constant pdf. Bins expecting < 5 are pooled. Returns
+// p.
+double chiSquare(const ShSampler& sampler, int samples, std::uint64_t seed,
+                 const ShSampler* drawFrom = nullptr) {
   const int bs = 32, bt = 64, leaf = 1 << sampler.depth();
   std::vector<double> expected(bs * bt, 0.0), observed(bs * bt, 0.0);
   for (int i = 0; i < leaf; ++i)
     for (int j = 0; j < leaf; ++j) {
       double pdf = sampler.pdf(ShSampler::toSphere((i + 0.5) / leaf, (j + 0.5) / leaf));
-      expected[(i * bs / leaf) * bt + j * bt / leaf] += pdf * 4 * kPi / (static_cast<double>(leaf) * leaf) * samples;
+      expected[(i * bs / leaf) * bt + j * bt / leaf] +=
+          pdf * 4 * kPi / (static_cast<double>(leaf) * leaf) * samples;
     }
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(0, 1);
@@ -78,7 +82,8 @@ double chiSquare(const ShSampler& sampler, int samples, std::uint64_t seed, cons
   return 1 - gammaP(0.5 * dof, 0.5 * chi2);
 }
 
-// Berger's Figure 2 kind of function: blocks with sharp edges, which 6 bands reconstruct with negative ringing.
+// Berger's Figure 2 kind of function: blocks with sharp edges, which 6 bands reconstruct with negative
+// ringing.
 std::vector<double> blockyFunction(int bands) {
   const int W = 512, H = 256;
   Projection pr(ProjectionKind::LatLong, W, H);
@@ -125,7 +130,8 @@ struct Case {
 };
 
 std::vector<Case> cases() {
-  return {{"positive smooth", 4, positiveFunction()}, {"Berger blocky, 6 bands", 6, blockyFunction(6)},
+  return {{"positive smooth", 4, positiveFunction()},
+          {"Berger blocky, 6 bands", 6, blockyFunction(6)},
           {"sunny probe, 8 bands", 8, sunnyProbe(8)}};
 }
 
@@ -145,8 +151,8 @@ TEST(ShSampler, ChiSquareGoodnessOfFit) {
 }
 
 TEST(ShSampler, ChiSquareRejectsAMismatch) {
-  // The negative control: samples of a slightly different function (its z-gradient term moved by a tenth of the
-  // constant term) judged against the pdf of the original must be rejected.
+  // The negative control: samples of a slightly different function (its z-gradient term moved by a tenth of
+  // the constant term) judged against the pdf of the original must be rejected.
   for (const Case& c : cases()) {
     std::vector<double> other = c.c;
     other[2] += 0.1 * std::abs(c.c[0]);
@@ -156,8 +162,8 @@ TEST(ShSampler, ChiSquareRejectsAMismatch) {
 }
 
 TEST(ShSampler, PdfIntegratesToOneIsPositiveAndBounded) {
-  // A midpoint rule over the area-preserving (cos theta, phi) domain, 1024 x 1024 cells of solid angle 4pi / 1024^2:
-  // pdf() is evaluated at directions, through the same mapping a renderer would use.
+  // A midpoint rule over the area-preserving (cos theta, phi) domain, 1024 x 1024 cells of solid angle 4pi /
+  // 1024^2: pdf() is evaluated at directions, through the same mapping a renderer would use.
   const int n = 1024;
   for (const Case& c : cases())
     for (double eps : {0.0, 0.01, 0.25}) {
@@ -173,7 +179,8 @@ TEST(ShSampler, PdfIntegratesToOneIsPositiveAndBounded) {
       EXPECT_NEAR(integral, 1.0, 1e-3) << c.name << " eps " << eps;
       if (eps > 0) {
         EXPECT_GT(minimum, 0.0) << c.name;
-        // Section 3.1: every leaf keeps at least (eps^2)^depth of the mass, i.e. pdf >= (4 eps^2)^depth / 4pi.
+        // Section 3.1: every leaf keeps at least (eps^2)^depth of the mass, i.e. pdf >= (4 eps^2)^depth /
+        // 4pi.
         EXPECT_GE(minimum * 4 * kPi, std::pow(4 * eps * eps, depth) * (1 - 1e-12)) << c.name;
       }
     }
@@ -204,8 +211,8 @@ TEST(ShSampler, EpsilonZeroIsJaroszAndOneHalfIsUniform) {
   const double total = integrator.integral(-1, 1, -kPi, kPi);
   for (int i = 0; i < leaf; ++i)
     for (int j = 0; j < leaf; ++j) {
-      double cell = integrator.integral(1 - 2.0 * (i + 1) / leaf, 1 - 2.0 * i / leaf, -kPi + 2 * kPi * j / leaf,
-                                        -kPi + 2 * kPi * (j + 1) / leaf);
+      double cell = integrator.integral(1 - 2.0 * (i + 1) / leaf, 1 - 2.0 * i / leaf,
+                                        -kPi + 2 * kPi * j / leaf, -kPi + 2 * kPi * (j + 1) / leaf);
       double pdf = jarosz.pdf(ShSampler::toSphere((i + 0.5) / leaf, (j + 0.5) / leaf));
       EXPECT_NEAR(pdf * 4 * kPi / (leaf * leaf), cell / total, 1e-12);
     }
@@ -223,11 +230,12 @@ TEST(ShSampler, OffsetRemedyIsPositiveButFlatter) {
 }
 
 TEST(ShSampler, ImportanceSamplingIrradianceBeatsUniformAndOffset) {
-  // Berger 2011's claim on a real sunny probe: at equal sample count the epsilon-clamped sampler's variance is lower
-  // than uniform sampling's and than that of the function offset until positive (exact variances, no randomness),
-  // for surfaces facing the sky. epsilon = 0.1: at 0.01 the pdf can collapse where the ringing reconstruction is
-  // small but the real light is not, and lose to uniform sampling (native/bench/sh_benchmark.cpp shows the grid).
-  // A normal facing the ground loses with any radiance-only sampler; a renderer covers it by MIS with cosine sampling.
+  // Berger 2011's claim on a real sunny probe: at equal sample count the epsilon-clamped sampler's variance
+  // is lower than uniform sampling's and than that of the function offset until positive (exact variances, no
+  // randomness), for surfaces facing the sky. epsilon = 0.1: at 0.01 the pdf can collapse where the ringing
+  // reconstruction is small but the real light is not, and lose to uniform sampling
+  // (native/bench/sh_benchmark.cpp shows the grid). A normal facing the ground loses with any radiance-only
+  // sampler; a renderer covers it by MIS with cosine sampling.
   Probe probe = Probe::load(PROBELIGHTS_BUNDLED_PROBE);
   const int bands = 8;
   std::vector<double> c = projectProbe(probe, bands).luminance();

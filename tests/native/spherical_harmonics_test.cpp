@@ -1,4 +1,5 @@
-// Spherical harmonics: white furnace, orthonormality to 20 bands, projection, exact rectangle integrals, irradiance.
+// Spherical harmonics: white furnace, orthonormality to 20 bands, projection, exact rectangle integrals,
+// irradiance.
 #include "probelights/spherical_harmonics.h"
 
 #include <gtest/gtest.h>
@@ -84,7 +85,8 @@ TEST(Projection, WhiteFurnace) {
     for (int k = 0; k < 3; ++k) EXPECT_LT(std::abs(sh.c[i][k]), 1e-9 * L) << i;
   // And its irradiance is pi L on every normal.
   ShCoefficients e = irradianceCoefficients(sh);
-  for (Vec3 n : {Vec3{0, 0, 1}, Vec3{1, 0, 0}, Vec3{0.6, -0.8, 0}}) EXPECT_NEAR(e.evaluate(n)[0], kPi * L, 1e-9);
+  for (Vec3 n : {Vec3{0, 0, 1}, Vec3{1, 0, 0}, Vec3{0.6, -0.8, 0}})
+    EXPECT_NEAR(e.evaluate(n)[0], kPi * L, 1e-9);
 }
 
 TEST(Projection, RecoversABandLimitedFunction) {
@@ -96,8 +98,9 @@ TEST(Projection, RecoversABandLimitedFunction) {
   truth.c[0] = {3, 3, 3};  // keeps the function positive (probes clamp negatives)
   const int W = 1024, H = 512;
   const Projection pr(ProjectionKind::LatLong, W, H);
-  auto t = testing::makeProbe(W, H, ProjectionKind::LatLong,
-                              [&](int x, int y) { return truth.evaluate(*pr.direction((x + 0.5) / W, (y + 0.5) / H)); });
+  auto t = testing::makeProbe(W, H, ProjectionKind::LatLong, [&](int x, int y) {
+    return truth.evaluate(*pr.direction((x + 0.5) / W, (y + 0.5) / H));
+  });
   ShCoefficients got = projectProbe(t.probe, bands);
   for (int i = 0; i < shCount(bands); ++i)
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(got.c[i][k], truth.c[i][k], 2e-5) << i;
@@ -134,13 +137,15 @@ TEST(RectIntegrals, AgreeWithBruteForce) {
     double brute = 0;
     for (int i = 0; i < n; ++i)
       for (int j = 0; j < n; ++j) {
-        double z = z0 + (i + 0.5) * (z1 - z0) / n, phi = p0 + (j + 0.5) * (p1 - p0) / n, r = std::sqrt(1 - z * z);
+        double z = z0 + (i + 0.5) * (z1 - z0) / n, phi = p0 + (j + 0.5) * (p1 - p0) / n,
+               r = std::sqrt(1 - z * z);
         shBasis(bands, {r * std::cos(phi), r * std::sin(phi), z}, y);
         double f = 0;
         for (std::size_t k = 0; k < c.size(); ++k) f += c[k] * y[k];
         brute += f * (z1 - z0) * (p1 - p0) / n / n;
       }
-    EXPECT_NEAR(integrator.integral(z0, z1, p0, p1), brute, 2e-5 * (z1 - z0) * (p1 - p0) * 10) << z0 << " " << p0;
+    EXPECT_NEAR(integrator.integral(z0, z1, p0, p1), brute, 2e-5 * (z1 - z0) * (p1 - p0) * 10)
+        << z0 << " " << p0;
   }
   // Over the whole sphere only the constant term survives: c_0 * sqrt(4 pi).
   EXPECT_NEAR(integrator.integral(-1, 1, -kPi, kPi), c[0] * std::sqrt(4 * kPi), 1e-12);
@@ -150,8 +155,9 @@ TEST(Irradiance, MatchesADirectSumOnAProbe) {
   // A smooth sky: 9 bands of irradiance are within 0.5 % of the exact sum of L max(0, n.d) dOmega.
   auto sky = [](const Vec3& d) { return Rgb{0.2 + std::max(0.0, d.z), 0.3, 0.1 + 0.05 * (d.x + 1)}; };
   Projection pr(ProjectionKind::LatLong, 512, 256);
-  auto t = testing::makeProbe(512, 256, ProjectionKind::LatLong,
-                              [&](int x, int y) { return sky(*pr.direction((x + 0.5) / 512, (y + 0.5) / 256)); });
+  auto t = testing::makeProbe(512, 256, ProjectionKind::LatLong, [&](int x, int y) {
+    return sky(*pr.direction((x + 0.5) / 512, (y + 0.5) / 256));
+  });
   ShCoefficients e = irradianceCoefficients(projectProbe(t.probe, 9));
   for (Vec3 n : {Vec3{0, 0, 1}, Vec3{0, 0, -1}, Vec3{0.8, 0, 0.6}}) {
     double exact = 0;

@@ -51,7 +51,8 @@ inline double maxRelativeDifference(const Rgb& a, const Rgb& b) {
 }
 
 inline BakeResult bakeWith(const Probe& probe, Method method, int lights,
-                           WorkingResolution resolution = {WorkingResolution::Mode::Full, 0}, bool horizon = false) {
+                           WorkingResolution resolution = {WorkingResolution::Mode::Full, 0},
+                           bool horizon = false) {
   BakeOptions o;
   o.splitAtHorizon = horizon;
   o.method = method;

@@ -1,9 +1,9 @@
 // Simulating only the effects a scene calls for: each effect's ground truth computed from the full probe, and
 // the lights' answer in closed form, at a fixed set of sample points; no general renderer.
-//   diffuse: irradiance E(n) = sum over the probe of L max(0, n.w) dw on 256 well-spread normals (Fibonacci
-//   sphere); shadow:  irradiance on a ground plane (z = 0, normal +Z) at 16 x 16 points of [-2.5, 2.5]^2
-//   under a sphere of
-//            radius 1 resting on it at the origin, visibility by analytic ray-sphere tests;
+//   diffuse: irradiance E(n) = sum over the probe of L max(0, n.w) dw on 256 well-spread normals
+//            (Fibonacci sphere);
+//   shadow:  irradiance on a ground plane (z = 0, normal +Z) at 16 x 16 points of [-2.5, 2.5]^2 under a
+//            sphere of radius 1 resting on it at the origin, visibility by analytic ray-sphere tests;
 //   glossy:  a normalized Phong lobe (n + 1) / (2 pi) max(0, r.w)^n, n = 8 and 64, around 256 directions r.
 // Error of an effect = relative RMS of luminance over its points: rms(lights - truth) / rms(truth).
 // Lights are point (delta) lights: each contributes rgb x kernel(direction). The probe is used pixel by pixel

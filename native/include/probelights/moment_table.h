@@ -4,9 +4,9 @@
 // Working resolution is the accuracy-for-time knob: the grid's cells are blocks of cellSize x cellSize pixels
 // (cellSize 1 = full resolution, the papers' exact algorithm). Each cell holds exact double sums over its
 // pixels of
-//   w = Y * dOmega          (Rec. 709 luminance times the pixel's exact solid angle: the energy median cut
-//   balances) w * d                   (d = the pixel's unit direction: the first moment, for variance and
-//   centroids) lit                     (1 if w > 0: the partition never cuts off a part without light)
+//   w = Y * dOmega   (Rec. 709 luminance times the pixel's exact solid angle: the energy median cut balances)
+//   w * d            (d = the pixel's unit direction: the first moment, for variance and centroids)
+//   lit              (1 if w > 0: the partition never cuts off a part without light)
 // so a region's energy and spread are exact whatever the cell size; only where cuts may fall gets coarser.
 // Lights are always summed from the full-resolution pixels of their regions (lights.h).
 #pragma once

@@ -1,6 +1,6 @@
 // The words of every option: one table per enum, shared by the CLI, the Python module and the JSON, so every
-// shell parses, prints and refuses a word the same way ("unknown method 'x': use median-cut, variance or sh").
-// A table lists each value's canonical word first; later rows for the same value are accepted aliases.
+// shell parses, prints and refuses a word the same way ("unknown method 'x': use median-cut, variance or
+// sh"). A table lists each value's canonical word first; later rows for the same value are accepted aliases.
 #pragma once
 
 #include <array>

@@ -14,7 +14,7 @@ namespace probelights {
 
 // What to do with NaN or infinite samples: refuse the probe (default), or read them as 0.
 enum class NonFinitePolicy { Error, Zero };
-std::string toString(NonFinitePolicy policy);             // "error", "zero"
+std::string toString(NonFinitePolicy policy);                   // "error", "zero"
 NonFinitePolicy parseNonFinitePolicy(const std::string& name);  // throws Error naming the choices
 
 // "auto" picks lat-long for a 2:1 image and refuses to guess otherwise.

@@ -7,18 +7,18 @@
 //      phi = 2 pi (0.5 - u), elevation = pi/2 - pi v,
 //      direction = (cos(el) cos(phi), cos(el) sin(phi), sin(el)).
 //    The solid angle of pixel row y is exact: (2 pi / W) (cos(pi y / H) - cos(pi (y + 1) / H)).
-//  - MirrorBall (Blender's "Mirror Ball", Cycles' mirrorball_to_direction): the image is a chrome ball seen
-//  by an
-//    orthographic camera looking along +Y; disc coordinates a = 2u - 1 (right = +X), b = 1 - 2v (up = +Z);
-//    the ball normal is n = (a, -s, b) with s = sqrt(1 - a^2 - b^2) and the reflected direction is
+//  - MirrorBall (Blender's "Mirror Ball", Cycles' mirrorball_to_direction): the image is a chrome ball
+//    seen by an orthographic camera looking along +Y; disc coordinates a = 2u - 1 (right = +X),
+//    b = 1 - 2v (up = +Z); the ball normal is n = (a, -s, b) with s = sqrt(1 - a^2 - b^2) and the
+//    reflected direction is
 //      d = (2 s a, 1 - 2 s^2, 2 s b);
 //    the centre sees -Y (back towards the camera), the rim sees +Y. The map is equal-area: the cap of
 //    directions within angle theta of -Y comes from the disc of radius r = sin(theta / 2) and has solid angle
 //    4 pi r^2, so a pixel's solid angle is exactly 4 x (area of the pixel inside the unit disc), computed in
 //    closed form.
 //  - Angular (Debevec's angular map light probe format): same orientation as the mirror ball (centre -Y,
-//  right +X,
-//    up +Z) but the angle from the centre direction grows linearly with the radius: theta = pi r, so
+//    right +X, up +Z) but the angle from the centre direction grows linearly with the radius:
+//    theta = pi r, so
 //      d = (sin(theta) a / r, -cos(theta), sin(theta) b / r).
 //    Its area density is dOmega/dA = pi sin(pi r) / r; a pixel's solid angle is integrated by Gauss-Legendre
 //    quadrature, accurate to ~1e-10 relative inside the disc and ~1e-7 on the rim (sub-divided there).
@@ -37,7 +37,7 @@ namespace probelights {
 
 enum class ProjectionKind { LatLong, MirrorBall, Angular };
 
-std::string toString(ProjectionKind kind);  // "latlong", "mirror-ball", "angular"
+std::string toString(ProjectionKind kind);                // "latlong", "mirror-ball", "angular"
 ProjectionKind parseProjection(const std::string& name);  // throws Error naming the choices
 
 class Projection {

@@ -1,14 +1,13 @@
 // Importance sampling of a function given by SH coefficients: hierarchical sample warping (Jarosz, Carr &
-// Jensen 2009) made robust to a reconstruction that goes negative (Berger 2011, "Approximate importance sampling of functions reconstructed
-// from spherical harmonics").
+// Jensen 2009) made robust to a reconstruction that goes negative (Berger 2011, "Approximate importance
+// sampling of functions reconstructed from spherical harmonics").
 //
 // Domain: the unit square (s, t) mapped to the sphere by z = cos(theta) = 1 - 2s, phi = -pi + 2 pi t, which
 // is area-preserving (dOmega = 4 pi ds dt). A quadtree of `depth` levels splits every node into quadrants;
 // the exact integrals of the reconstruction over them (ShRectIntegrator) drive a warp along s, then along t
 // inside the chosen half. Berger's rules (section 3):
-//   - each warp probability is clamped to [epsilon, 1 - epsilon], so every quadrant keeps at least epsilon^2
-//   of its
-//     parent and no part of the sphere is left unsampled;
+//   - each warp probability is clamped to [epsilon, 1 - epsilon], so every quadrant keeps at least
+//     epsilon^2 of its parent and no part of the sphere is left unsampled;
 //   - in a node whose total integral is not positive the recursion stops and the sample stays uniform there
 //     (likewise a half whose integral is not positive is split evenly);
 //   - the pdf is accumulated through the levels, each multiplying it by 4 p_s p_t (equation 7), so

@@ -4,14 +4,17 @@
 // Convention (Sloan, "Stupid Spherical Harmonics Tricks", 2008): orthonormal real SH with the Condon-Shortley
 // phase, index i = l (l + 1) + m for band l = 0..bands-1 and -l <= m <= l, angles in Blender's frame: theta
 // from +Z (up), phi = atan2(y, x). With N_l^m the normalized associated Legendre function,
-//   Y_l^0 = N_l^0(cos theta),  Y_l^m = sqrt(2) N_l^m(cos theta) cos(m phi),  Y_l^-m = sqrt(2) N_l^m(cos
-//   theta) sin(m phi)
+//   Y_l^0  = N_l^0(cos theta),
+//   Y_l^m  = sqrt(2) N_l^m(cos theta) cos(m phi),
+//   Y_l^-m = sqrt(2) N_l^m(cos theta) sin(m phi)
 // so that Y_1^-1 = -sqrt(3/4pi) y, Y_1^0 = sqrt(3/4pi) z, Y_1^1 = -sqrt(3/4pi) x.
 // N_l^m is computed by the fully normalized recurrence (stable to hundreds of bands: no factorials, no
 // cancellation):
-//   N_0^0 = 1/sqrt(4 pi),  N_m^m = -sqrt((2m+1)/(2m)) sin(theta) N_{m-1}^{m-1},  N_{m+1}^m = sqrt(2m+3) z
-//   N_m^m, N_l^m = a (z N_{l-1}^m - b N_{l-2}^m),  a = sqrt((4l^2-1)/(l^2-m^2)),  b =
-//   sqrt(((l-1)^2-m^2)/(4(l-1)^2-1)).
+//   N_0^0     = 1/sqrt(4 pi),
+//   N_m^m     = -sqrt((2m+1)/(2m)) sin(theta) N_{m-1}^{m-1},
+//   N_{m+1}^m = sqrt(2m+3) z N_m^m,
+//   N_l^m     = a (z N_{l-1}^m - b N_{l-2}^m),
+//               a = sqrt((4l^2-1)/(l^2-m^2)),  b = sqrt(((l-1)^2-m^2)/(4(l-1)^2-1)).
 #pragma once
 
 #include <span>
@@ -32,7 +35,7 @@ void shBasis(int bands, const Vec3& d, std::span<double> out);
 void normalizedLegendre(int bands, double z, std::span<double> out);
 
 enum class ShWindow { None, Hanning, Lanczos };
-std::string toString(ShWindow window);             // "none", "hanning", "lanczos"
+std::string toString(ShWindow window);            // "none", "hanning", "lanczos"
 ShWindow parseShWindow(const std::string& name);  // throws Error naming the choices
 
 struct ShCoefficients {
@@ -50,8 +53,9 @@ ShCoefficients projectProbe(const Probe& probe, int bands);
 // Multiplies band l by a window against ringing: Hanning (1 + cos(pi l / bands)) / 2, Lanczos sinc(l /
 // bands).
 void applyWindow(ShCoefficients& sh, ShWindow window);
-// Irradiance (Ramamoorthi & Hanrahan 2001): E_lm = A_l L_lm, A_0 = pi, A_1 = 2pi/3, A_l (even l) =
-// 2pi (-1)^(l/2-1) / ((l+2)(l-1)) * C(l, l/2) / 2^l, A_l (odd l > 1) = 0.
+// Irradiance (Ramamoorthi & Hanrahan 2001): E_lm = A_l L_lm with
+//   A_0 = pi,  A_1 = 2pi/3,
+//   A_l = 2pi (-1)^(l/2-1) / ((l+2)(l-1)) * C(l, l/2) / 2^l  (even l),  A_l = 0  (odd l > 1).
 ShCoefficients irradianceCoefficients(const ShCoefficients& radiance);
 double irradianceFactor(int l);
 

@@ -11,9 +11,9 @@
 #pragma once
 
 #include <algorithm>
-#include <functional>
 #include <array>
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <span>
 #include <vector>
@@ -30,13 +30,13 @@ class SummedAreaTable {
 
   SummedAreaTable() = default;
 
-  // rowValues(y, std::span<Values>) fills the `width` values of row y. It is called for several rows at once from
-  // worker threads, so it must be safe to call concurrently for different rows.
+  // rowValues(y, std::span<Values>) fills the `width` values of row y. It is called for several rows at once
+  // from worker threads, so it must be safe to call concurrently for different rows.
   //
-  // Built in two parallel passes: (1) each row's prefix sums along x, rows spread over the threads (which also
-  // spreads the first touch of the table's pages); (2) the running sums down each column, column blocks spread over
-  // the threads. Every entry gets the same additions in the same order as a one-pass build, so the table is
-  // bit-identical whatever the thread count.
+  // Built in two parallel passes: (1) each row's prefix sums along x, rows spread over the threads (which
+  // also spreads the first touch of the table's pages); (2) the running sums down each column, column blocks
+  // spread over the threads. Every entry gets the same additions in the same order as a one-pass build, so
+  // the table is bit-identical whatever the thread count.
   SummedAreaTable(int width, int height, const std::function<void(int, std::span<Values>)>& rowValues);
 
   int width() const { return width_; }

@@ -37,14 +37,15 @@ struct AutoCountResult {
   BakeResult bake;
   EffectErrors errors;
   int lights = 0;
-  bool met = false;  // false: no count tried met the tolerance; then the one with the lowest error (fewest on a tie)
+  bool met =
+      false;  // false: no count tried met the tolerance; then the one with the lowest error (fewest on a tie)
   std::vector<std::pair<int, double>> tried;  // (lights, worst error)
 };
 
 // The smallest N (doubling, then bisecting) whose worst error over the evaluator's effects is <= tolerance,
-// up to maxLights; with refit, each candidate is refit first. When none meets it: the count with the lowest error
-// tried (the doubling stops two doublings past it without improvement), so a miss never costs more lights than a
-// count that did better.
+// up to maxLights; with refit, each candidate is refit first. When none meets it: the count with the lowest
+// error tried (the doubling stops two doublings past it without improvement), so a miss never costs more
+// lights than a count that did better.
 AutoCountResult autoCount(const Probe& probe, const Evaluator& evaluator, BakeOptions options,
                           double tolerance, bool refit, int maxLights = 1024, bool moveDirections = false);
 
