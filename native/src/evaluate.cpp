@@ -108,19 +108,22 @@ Evaluator::Evaluator(const Probe& probe, unsigned effects, EvaluatorOptions opti
   const int maxWidth = std::max(1, options.maxWidth);
   const int cell = std::max(1, (probe.width() + maxWidth - 1) / maxWidth);
   const int cw = (probe.width() + cell - 1) / cell, ch = (probe.height() + cell - 1) / cell;
-  std::vector<std::vector<PixelSums>> rows(ch);
-  parallelFor(ch, [&](std::int64_t y) {
-    rows[y].assign(cw, PixelSums{});
-    accumulateRows(probe, static_cast<int>(y) * cell,
-                   std::min(probe.height(), static_cast<int>(y + 1) * cell), 0, probe.width(), cell, rows[y]);
-  });
-  for (const auto& row : rows)
-    for (const PixelSums& s : row) {
-      if (s.rgb[0] <= 0 && s.rgb[1] <= 0 && s.rgb[2] <= 0) continue;
-      const double len = s.moment.length();
-      directions_.push_back(len > 0 ? (1.0 / len) * s.moment : Vec3{0, 0, 1});
-      radiance_.push_back(s.rgb);
-    }
+  parallelReduce(
+      ch, 0,
+      [&](std::int64_t y) {
+        std::vector<PixelSums> row(cw);
+        accumulateRows(probe, static_cast<int>(y) * cell,
+                       std::min(probe.height(), static_cast<int>(y + 1) * cell), 0, probe.width(), cell, row);
+        return row;
+      },
+      [&](int&, const std::vector<PixelSums>& row, std::int64_t) {
+        for (const PixelSums& s : row) {
+          if (s.rgb[0] <= 0 && s.rgb[1] <= 0 && s.rgb[2] <= 0) continue;
+          const double len = s.moment.length();
+          directions_.push_back(len > 0 ? (1.0 / len) * s.moment : Vec3{0, 0, 1});
+          radiance_.push_back(s.rgb);
+        }
+      });
   normals_ = fibonacciSphere(256);
   if (effects & kDiffuse) {
     diffuse_ = truthAt(directions_, radiance_, normals_.size(),

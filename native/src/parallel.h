@@ -4,7 +4,10 @@
 // bit-identical whichever backend runs and however many threads it has.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
+#include <type_traits>
+#include <vector>
 
 #if PROBELIGHTS_PARALLEL_OIIO
 #include <OpenImageIO/parallel.h>
@@ -44,6 +47,18 @@ void parallelFor(std::int64_t n, Task&& task) {
   work();
   for (auto& thread : pool) thread.join();
 #endif
+}
+
+// The ordered parallel reduction: part(i) for i in [0, n) in parallel (each from i alone), then
+// combine(total, part(i)) for i = 0, 1, ..., n - 1 on the caller's thread, so the result is bit-identical
+// whatever the thread count. Returns the total, starting from `init`.
+template <class T, class Part, class Combine>
+T parallelReduce(std::int64_t n, T init, Part&& part, Combine&& combine) {
+  std::vector<std::decay_t<decltype(part(std::int64_t{0}))>> parts(
+      static_cast<std::size_t>(std::max<std::int64_t>(n, 0)));
+  parallelFor(n, [&](std::int64_t i) { parts[static_cast<std::size_t>(i)] = part(i); });
+  for (std::int64_t i = 0; i < n; ++i) combine(init, std::move(parts[static_cast<std::size_t>(i)]), i);
+  return init;
 }
 
 }  // namespace probelights

@@ -94,30 +94,36 @@ void Probe::validate(NonFinitePolicy nonFinite) {
     long long negative = 0, nonFinite = 0;
     int firstBadX = -1;
   };
-  std::vector<RowCount> rows(view_.height);
-  parallelFor(view_.height, [&](std::int64_t y) {
-    RowCount& c = rows[y];
-    for (int x = 0; x < view_.width; ++x) {
-      const float* p = view_.pixel(x, static_cast<int>(y));
-      for (int k = 0; k < colourChannels; ++k) {
-        if (!std::isfinite(p[k])) {
-          if (c.firstBadX < 0) c.firstBadX = x;
-          ++c.nonFinite;
-        } else if (p[k] < 0.0f) {
-          ++c.negative;
+  struct Found {
+    long long negative = 0, nonFinite = 0;
+    int firstBadX = -1, firstBadY = -1;
+  };
+  const Found found = parallelReduce(
+      view_.height, Found{},
+      [&](std::int64_t y) {
+        RowCount c;
+        for (int x = 0; x < view_.width; ++x) {
+          const float* p = view_.pixel(x, static_cast<int>(y));
+          for (int k = 0; k < colourChannels; ++k) {
+            if (!std::isfinite(p[k])) {
+              if (c.firstBadX < 0) c.firstBadX = x;
+              ++c.nonFinite;
+            } else if (p[k] < 0.0f) {
+              ++c.negative;
+            }
+          }
         }
-      }
-    }
-  });
-  int firstBadY = -1;
-  for (int y = 0; y < view_.height; ++y) {
-    report_.negativeSamples += rows[y].negative;
-    report_.nonFiniteSamples += rows[y].nonFinite;
-    if (firstBadY < 0 && rows[y].firstBadX >= 0) firstBadY = y;
-  }
+        return c;
+      },
+      [](Found& f, RowCount c, std::int64_t y) {
+        f.negative += c.negative, f.nonFinite += c.nonFinite;
+        if (f.firstBadY < 0 && c.firstBadX >= 0) f.firstBadX = c.firstBadX, f.firstBadY = static_cast<int>(y);
+      });
+  report_.negativeSamples += found.negative;
+  report_.nonFiniteSamples += found.nonFinite;
   if (report_.nonFiniteSamples > 0) {
-    std::string where = "first at pixel (" + std::to_string(rows[firstBadY].firstBadX) + ", " +
-                        std::to_string(firstBadY) + ")";
+    std::string where =
+        "first at pixel (" + std::to_string(found.firstBadX) + ", " + std::to_string(found.firstBadY) + ")";
     if (nonFinite == NonFinitePolicy::Error)
       throw Error(std::to_string(report_.nonFiniteSamples) + " NaN/Inf samples, " + where +
                   "; to read them as 0 use the non-finite policy 'zero' (CLI: --nonfinite=zero)");
@@ -130,22 +136,22 @@ void Probe::validate(NonFinitePolicy nonFinite) {
 }
 
 Rgb Probe::integral() const {
-  std::vector<Rgb> rowSums(view_.height);
-  parallelFor(view_.height, [&](std::int64_t y) {
-    std::vector<Vec3> dirs(view_.width);
-    std::vector<double> omega(view_.width);
-    projection_.rowGeometry(static_cast<int>(y), 0, view_.width, dirs, omega);
-    Rgb s{};
-    for (int x = 0; x < view_.width; ++x) {
-      Rgb L = radiance(x, static_cast<int>(y));
-      for (int k = 0; k < 3; ++k) s[k] += L[k] * omega[x];
-    }
-    rowSums[y] = s;
-  });
-  Rgb total{};
-  for (const Rgb& s : rowSums)
-    for (int k = 0; k < 3; ++k) total[k] += s[k];
-  return total;
+  return parallelReduce(
+      view_.height, Rgb{},
+      [&](std::int64_t y) {
+        std::vector<Vec3> dirs(view_.width);
+        std::vector<double> omega(view_.width);
+        projection_.rowGeometry(static_cast<int>(y), 0, view_.width, dirs, omega);
+        Rgb s{};
+        for (int x = 0; x < view_.width; ++x) {
+          Rgb L = radiance(x, static_cast<int>(y));
+          for (int k = 0; k < 3; ++k) s[k] += L[k] * omega[x];
+        }
+        return s;
+      },
+      [](Rgb& total, const Rgb& s, std::int64_t) {
+        for (int k = 0; k < 3; ++k) total[k] += s[k];
+      });
 }
 
 }  // namespace probelights

@@ -47,33 +47,37 @@ ShLightResult shLights(const Probe& probe, const ShLightOptions& o) {
     std::vector<PixelSums> sums;
     std::vector<Rect> bounds;
   };
-  std::vector<Block> partial(blocks);
-  parallelFor(blocks, [&](std::int64_t b) {
-    Block& block = partial[b];
-    block.sums.assign(o.lights, PixelSums{});
-    block.bounds.assign(o.lights, Rect{W, H, 0, 0});
-    std::vector<Vec3> dirs(W);
-    std::vector<double> omega(W);
-    for (int y = static_cast<int>(b * H / blocks); y < static_cast<int>((b + 1) * H / blocks); ++y) {
-      probe.projection().rowGeometry(y, 0, W, dirs, omega);
-      for (int x = 0; x < W; ++x) {
-        if (omega[x] <= 0) continue;
-        const int k = stratumOf(sampler.invert(dirs[x]), o.lights);
-        accumulateRows(probe, y, y + 1, x, x + 1, 1, std::span<PixelSums>(&block.sums[k], 1));
-        Rect& r = block.bounds[k];
-        r = {std::min(r.x0, x), std::min(r.y0, y), std::max(r.x1, x + 1), std::max(r.y1, y + 1)};
-      }
-    }
-  });
-  std::vector<PixelSums> sums(o.lights);
-  std::vector<Rect> bounds(o.lights, Rect{W, H, 0, 0});
-  for (const Block& block : partial)
-    for (int k = 0; k < o.lights; ++k) {
-      sums[k] += block.sums[k];
-      const Rect& r = block.bounds[k];
-      bounds[k] = {std::min(bounds[k].x0, r.x0), std::min(bounds[k].y0, r.y0), std::max(bounds[k].x1, r.x1),
-                   std::max(bounds[k].y1, r.y1)};
-    }
+  Block merged{std::vector<PixelSums>(o.lights), std::vector<Rect>(o.lights, Rect{W, H, 0, 0})};
+  merged = parallelReduce(
+      blocks, std::move(merged),
+      [&](std::int64_t b) {
+        Block block;
+        block.sums.assign(o.lights, PixelSums{});
+        block.bounds.assign(o.lights, Rect{W, H, 0, 0});
+        std::vector<Vec3> dirs(W);
+        std::vector<double> omega(W);
+        for (int y = static_cast<int>(b * H / blocks); y < static_cast<int>((b + 1) * H / blocks); ++y) {
+          probe.projection().rowGeometry(y, 0, W, dirs, omega);
+          for (int x = 0; x < W; ++x) {
+            if (omega[x] <= 0) continue;
+            const int k = stratumOf(sampler.invert(dirs[x]), o.lights);
+            accumulateRows(probe, y, y + 1, x, x + 1, 1, std::span<PixelSums>(&block.sums[k], 1));
+            Rect& r = block.bounds[k];
+            r = {std::min(r.x0, x), std::min(r.y0, y), std::max(r.x1, x + 1), std::max(r.y1, y + 1)};
+          }
+        }
+        return block;
+      },
+      [&](Block& total, const Block& block, std::int64_t) {
+        for (int k = 0; k < o.lights; ++k) {
+          total.sums[k] += block.sums[k];
+          const Rect& r = block.bounds[k];
+          Rect& t = total.bounds[k];
+          t = {std::min(t.x0, r.x0), std::min(t.y0, r.y0), std::max(t.x1, r.x1), std::max(t.y1, r.y1)};
+        }
+      });
+  std::vector<PixelSums>& sums = merged.sums;
+  std::vector<Rect>& bounds = merged.bounds;
   result.assignMs = msSince(t);
 
   t = Clock::now();

@@ -76,8 +76,12 @@ ShCoefficients projectProbe(const Probe& probe, int bands) {
   if (bands > 256) throw Error("asked for " + std::to_string(bands) + " SH bands: at most 256");
   const int W = probe.width(), H = probe.height(), n = shCount(bands);
   const Projection& projection = probe.projection();
-  // Per-row partial sums, added in row order afterwards: deterministic whatever the thread count.
-  std::vector<std::vector<Rgb>> rows(H);
+  // Per-row partial sums, added in row order (parallelReduce): deterministic whatever the thread count.
+  ShCoefficients sh{bands, std::vector<Rgb>(n)};
+  auto add = [&](ShCoefficients& total, const std::vector<Rgb>& row, std::int64_t) {
+    for (int i = 0; i < n; ++i)
+      for (int k = 0; k < 3; ++k) total.c[i][k] += row[i][k];
+  };
   if (projection.kind() == ProjectionKind::LatLong) {
     // Exact for a probe that is constant over each pixel: c_lm = sum_p L_p * integral over pixel p of Y_lm,
     // and the pixel integral is separable, (integral of N_l^|m| dz over the row) x (integral of trig(m phi)
@@ -89,45 +93,47 @@ ShCoefficients projectProbe(const Probe& probe, int bands) {
     for (int x = 0; x < W; ++x)  // column x spans phi from 2pi(0.5 - (x+1)/W) to 2pi(0.5 - x/W)
       basis.phiIntegrals(2.0 * kPi * (0.5 - (x + 1.0) / W), 2.0 * kPi * (0.5 - static_cast<double>(x) / W),
                          std::span<double>(phiInt.data() + static_cast<std::size_t>(x) * trig, trig));
-    parallelFor(H, [&](std::int64_t y) {
-      std::vector<Rgb> a(trig);
-      for (int x = 0; x < W; ++x) {
-        const Rgb L = probe.radiance(x, static_cast<int>(y));
-        if (L[0] == 0 && L[1] == 0 && L[2] == 0) continue;
-        const double* p = phiInt.data() + static_cast<std::size_t>(x) * trig;
-        for (int j = 0; j < trig; ++j)
-          for (int k = 0; k < 3; ++k) a[j][k] += L[k] * p[j];
-      }
-      std::vector<double> zInt(static_cast<std::size_t>(bands) * (bands + 1) / 2);
-      basis.zIntegrals(std::cos(kPi * (y + 1.0) / H), std::cos(kPi * static_cast<double>(y) / H), zInt);
-      std::vector<Rgb>& out = rows[y];
-      out.assign(n, Rgb{});
-      for (int l = 0; l < bands; ++l)
-        for (int m = -l; m <= l; ++m) {
-          const double z = zInt[legendreIndex(l, std::abs(m))];
-          for (int k = 0; k < 3; ++k) out[shIndex(l, m)][k] += z * a[bands - 1 + m][k];
-        }
-    });
+    sh = parallelReduce(
+        H, std::move(sh),
+        [&](std::int64_t y) {
+          std::vector<Rgb> a(trig);
+          for (int x = 0; x < W; ++x) {
+            const Rgb L = probe.radiance(x, static_cast<int>(y));
+            if (L[0] == 0 && L[1] == 0 && L[2] == 0) continue;
+            const double* p = phiInt.data() + static_cast<std::size_t>(x) * trig;
+            for (int j = 0; j < trig; ++j)
+              for (int k = 0; k < 3; ++k) a[j][k] += L[k] * p[j];
+          }
+          std::vector<double> zInt(static_cast<std::size_t>(bands) * (bands + 1) / 2);
+          basis.zIntegrals(std::cos(kPi * (y + 1.0) / H), std::cos(kPi * static_cast<double>(y) / H), zInt);
+          std::vector<Rgb> out(n);
+          for (int l = 0; l < bands; ++l)
+            for (int m = -l; m <= l; ++m) {
+              const double z = zInt[legendreIndex(l, std::abs(m))];
+              for (int k = 0; k < 3; ++k) out[shIndex(l, m)][k] += z * a[bands - 1 + m][k];
+            }
+          return out;
+        },
+        add);
   } else {
-    parallelFor(H, [&](std::int64_t y) {
-      std::vector<Vec3> dirs(W);
-      std::vector<double> omega(W), basis(n);
-      projection.rowGeometry(static_cast<int>(y), 0, W, dirs, omega);
-      std::vector<Rgb>& out = rows[y];
-      out.assign(n, Rgb{});
-      for (int x = 0; x < W; ++x) {
-        if (omega[x] <= 0) continue;
-        const Rgb L = probe.radiance(x, static_cast<int>(y));
-        shBasis(bands, dirs[x], basis);
-        for (int i = 0; i < n; ++i)
-          for (int k = 0; k < 3; ++k) out[i][k] += L[k] * omega[x] * basis[i];
-      }
-    });
+    sh = parallelReduce(
+        H, std::move(sh),
+        [&](std::int64_t y) {
+          std::vector<Vec3> dirs(W);
+          std::vector<double> omega(W), basis(n);
+          projection.rowGeometry(static_cast<int>(y), 0, W, dirs, omega);
+          std::vector<Rgb> out(n);
+          for (int x = 0; x < W; ++x) {
+            if (omega[x] <= 0) continue;
+            const Rgb L = probe.radiance(x, static_cast<int>(y));
+            shBasis(bands, dirs[x], basis);
+            for (int i = 0; i < n; ++i)
+              for (int k = 0; k < 3; ++k) out[i][k] += L[k] * omega[x] * basis[i];
+          }
+          return out;
+        },
+        add);
   }
-  ShCoefficients sh{bands, std::vector<Rgb>(n)};
-  for (const auto& row : rows)
-    for (int i = 0; i < n; ++i)
-      for (int k = 0; k < 3; ++k) sh.c[i][k] += row[i][k];
   return sh;
 }
 

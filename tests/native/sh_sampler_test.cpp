@@ -10,41 +10,13 @@
 #include <filesystem>
 #include <random>
 
+#include "chi2.h"
 #include "probelights/error.h"
 #include "probelights/sh_variance.h"
 #include "test_probes.h"
 
 namespace probelights {
 namespace {
-
-// Regularized lower incomplete gamma P(a, x) (series / continued fraction), for chi-square p-values.
-double gammaP(double a, double x) {
-  if (x <= 0) return 0;
-  const double lga = std::lgamma(a);
-  if (x < a + 1) {
-    double sum = 1 / a, term = sum;
-    for (int n = 1; n < 1000; ++n) {
-      term *= x / (a + n);
-      sum += term;
-      if (std::abs(term) < std::abs(sum) * 1e-15) break;
-    }
-    return sum * std::exp(-x + a * std::log(x) - lga);
-  }
-  double b = x + 1 - a, c = 1e300, d = 1 / b, h = d;
-  for (int i = 1; i < 1000; ++i) {
-    double an = -i * (i - a);
-    b += 2;
-    d = an * d + b;
-    if (std::abs(d) < 1e-300) d = 1e-300;
-    c = b + an / c;
-    if (std::abs(c) < 1e-300) c = 1e-300;
-    d = 1 / d;
-    double del = d * c;
-    h *= del;
-    if (std::abs(del - 1) < 1e-15) break;
-  }
-  return 1 - std::exp(-x + a * std::log(x) - lga) * h;
-}
 
 // Chi-square test of samples against the sampler's own pdf on a grid of bins in (s, t), aligned with the tree
 // so the expected counts are exact sums of the piecewise-constant pdf. Bins expecting < 5 are pooled. Returns
@@ -65,21 +37,7 @@ double chiSquare(const ShSampler& sampler, int samples, std::uint64_t seed,
     auto st = ShSampler::toSquare((drawFrom ? *drawFrom : sampler).sample({u(rng), u(rng)}).direction);
     observed[static_cast<int>(st[0] * bs) * bt + static_cast<int>(st[1] * bt)] += 1;
   }
-  double chi2 = 0, poolE = 0, poolO = 0;
-  int dof = -1;
-  for (int i = 0; i < bs * bt; ++i) {
-    if (expected[i] < 5) {
-      poolE += expected[i], poolO += observed[i];
-      continue;
-    }
-    chi2 += (observed[i] - expected[i]) * (observed[i] - expected[i]) / expected[i];
-    ++dof;
-  }
-  if (poolE > 0) {
-    chi2 += (poolO - poolE) * (poolO - poolE) / poolE;
-    ++dof;
-  }
-  return 1 - gammaP(0.5 * dof, 0.5 * chi2);
+  return testing::chiSquarePValue(observed, expected);
 }
 
 // Berger's Figure 2 kind of function: blocks with sharp edges, which 6 bands reconstruct with negative
