@@ -24,17 +24,13 @@ Vec3 ShSampler::toSphere(double s, double t) {
   return {r * std::cos(phi), r * std::sin(phi), z};
 }
 
-ShSampler::ShSampler(int bands, std::vector<double> coefficients, double epsilon, int depth)
-    : epsilon_(epsilon), depth_(depth) {
-  if (!(epsilon >= 0.0 && epsilon <= 0.5)) {
-    char text[64];
-    std::snprintf(text, sizeof text, "%g", epsilon);
-    throw Error(std::string("epsilon must be in [0, 0.5], got ") + text);
-  }
+namespace {
+
+// The exact integrals of the SH reconstruction over the 2^depth x 2^depth cells of the unit square
+// (separable: z integrals per row, phi integrals per column), row-major in (s, t).
+std::vector<double> leafIntegrals(int bands, std::vector<double> coefficients, int depth) {
   if (depth < 1 || depth > 12) throw Error("sampler depth must be 1 to 12, got " + std::to_string(depth));
   ShRectIntegrator integrator(bands, std::move(coefficients));
-  // Integrals of the finest cells (separable: z integrals per row, phi integrals per column), then sums
-  // upwards.
   const int n = 1 << depth;
   std::vector<std::vector<double>> zInt(
       n, std::vector<double>(static_cast<std::size_t>(bands) * (bands + 1) / 2));
@@ -43,103 +39,27 @@ ShSampler::ShSampler(int bands, std::vector<double> coefficients, double epsilon
     integrator.zIntegrals(1.0 - 2.0 * (i + 1) / n, 1.0 - 2.0 * i / n, zInt[i]);
     integrator.phiIntegrals(-kPi + 2.0 * kPi * i / n, -kPi + 2.0 * kPi * (i + 1) / n, phiInt[i]);
   }
-  levels_.resize(depth + 1);
-  levels_[depth].resize(static_cast<std::size_t>(n) * n);
+  std::vector<double> leaves(static_cast<std::size_t>(n) * n);
   for (int is = 0; is < n; ++is)
     for (int it = 0; it < n; ++it)
-      levels_[depth][static_cast<std::size_t>(is) * n + it] = integrator.combine(zInt[is], phiInt[it]);
-  // Each coarser level: its nodes' integrals (sums of their quadrants) and warp probabilities, clamped
-  // (Berger 3.1).
-  auto clamp = [&](double p) { return std::clamp(p, epsilon_, 1.0 - epsilon_); };
-  splits_.resize(depth);
-  for (int k = depth - 1; k >= 0; --k) {
-    const int m = 1 << k;
-    levels_[k].resize(static_cast<std::size_t>(m) * m);
-    splits_[k].resize(static_cast<std::size_t>(m) * m);
-    const auto& fine = levels_[k + 1];
-    for (int is = 0; is < m; ++is)
-      for (int it = 0; it < m; ++it) {
-        auto f = [&](int a, int b) {
-          return fine[static_cast<std::size_t>(2 * is + a) * 2 * m + 2 * it + b];
-        };
-        const double total = f(0, 0) + f(0, 1) + f(1, 0) + f(1, 1);
-        levels_[k][static_cast<std::size_t>(is) * m + it] = total;
-        Split& sp = splits_[k][static_cast<std::size_t>(is) * m + it];
-        sp.positive = total > 0;
-        sp.pS = sp.positive ? clamp((f(0, 0) + f(0, 1)) / total) : 0.5;
-        for (int a = 0; a < 2; ++a) {
-          const double half = f(a, 0) + f(a, 1);
-          sp.pT[a] = half > 0 ? clamp(f(a, 0) / half) : 0.5;
-        }
-      }
-  }
+      leaves[static_cast<std::size_t>(is) * n + it] = integrator.combine(zInt[is], phiInt[it]);
+  return leaves;
 }
+
+}  // namespace
+
+ShSampler::ShSampler(int bands, std::vector<double> coefficients, double epsilon, int depth)
+    : warp_(leafIntegrals(bands, std::move(coefficients), depth), depth, epsilon, 4.0 * kPi) {}
 
 ShSampler::Sample ShSampler::sample(std::array<double, 2> u) const {
-  double s0 = 0, t0 = 0, size = 1, pdf = 1.0 / (4.0 * kPi);
-  int is = 0, it = 0;
-  for (int k = 0; k < depth_; ++k) {
-    const Split& sp = split(k, is, it);
-    if (!sp.positive) break;  // uniform in this node
-    size *= 0.5;
-    int a = u[0] < sp.pS ? 0 : 1;
-    double ps = a == 0 ? sp.pS : 1.0 - sp.pS;
-    u[0] = a == 0 ? u[0] / sp.pS : (u[0] - sp.pS) / (1.0 - sp.pS);
-    int b = u[1] < sp.pT[a] ? 0 : 1;
-    double pt = b == 0 ? sp.pT[a] : 1.0 - sp.pT[a];
-    u[1] = b == 0 ? u[1] / sp.pT[a] : (u[1] - sp.pT[a]) / (1.0 - sp.pT[a]);
-    pdf *= 4.0 * ps * pt;  // equation 7
-    s0 += a * size;
-    t0 += b * size;
-    is = 2 * is + a;
-    it = 2 * it + b;
-  }
-  u[0] = std::clamp(u[0], 0.0, 1.0);
-  u[1] = std::clamp(u[1], 0.0, 1.0);
-  return {toSphere(s0 + u[0] * size, t0 + u[1] * size), pdf};
+  const HierarchicalWarp::Sample w = warp_.sample(u);
+  return {toSphere(w.point[0], w.point[1]), w.density};
 }
 
-template <class Visit>
-std::array<double, 2> ShSampler::descend(const Vec3& direction, Visit&& visit) const {
-  auto [s, t] = toSquare(direction);
-  int is = 0, it = 0;
-  for (int k = 0; k < depth_; ++k) {
-    const Split& sp = split(k, is, it);
-    if (!sp.positive) break;  // uniform below: nothing more to visit
-    const int a = s < 0.5 ? 0 : 1, b = t < 0.5 ? 0 : 1;
-    s = 2.0 * s - a;
-    t = 2.0 * t - b;
-    visit(sp, a, b);
-    is = 2 * is + a;
-    it = 2 * it + b;
-  }
-  return {s, t};
-}
-
-double ShSampler::pdf(const Vec3& direction) const {
-  double pdf = 1.0 / (4.0 * kPi);
-  descend(direction, [&](const Split& sp, int a, int b) {
-    pdf *= 4.0 * (a == 0 ? sp.pS : 1.0 - sp.pS) * (b == 0 ? sp.pT[a] : 1.0 - sp.pT[a]);
-  });
-  return pdf;
-}
+double ShSampler::pdf(const Vec3& direction) const { return warp_.density(toSquare(direction)); }
 
 std::array<double, 2> ShSampler::invert(const Vec3& direction) const {
-  struct Step {
-    int a, b;
-    const Split* sp;
-  };
-  Step path[16];
-  int n = 0;
-  auto [s, t] = descend(direction, [&](const Split& sp, int a, int b) { path[n++] = {a, b, &sp}; });
-  // (s, t) are the local coordinates in the last node; unwind the warps from the bottom up.
-  for (int k = n - 1; k >= 0; --k) {
-    const Split& sp = *path[k].sp;
-    const int a = path[k].a, b = path[k].b;
-    t = b == 0 ? t * sp.pT[a] : sp.pT[a] + t * (1.0 - sp.pT[a]);
-    s = a == 0 ? s * sp.pS : sp.pS + s * (1.0 - sp.pS);
-  }
-  return {s, t};
+  return warp_.invert(toSquare(direction));
 }
 
 std::vector<double> offsetUntilPositive(int bands, std::vector<double> c) {

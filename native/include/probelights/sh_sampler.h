@@ -1,19 +1,13 @@
-// Importance sampling of a function given by SH coefficients: hierarchical sample warping (Jarosz, Carr &
-// Jensen 2009) made robust to a reconstruction that goes negative (Berger 2011, "Approximate importance
-// sampling of functions reconstructed from spherical harmonics").
+// Importance sampling of a function given by SH coefficients: the generic hierarchical warp
+// (hierarchical_warp.h: Jarosz, Carr & Jensen 2009, with Berger 2011's epsilon clamping) over the exact
+// integrals of the SH reconstruction on a grid of the unit square.
 //
 // Domain: the unit square (s, t) mapped to the sphere by z = cos(theta) = 1 - 2s, phi = -pi + 2 pi t, which
-// is area-preserving (dOmega = 4 pi ds dt). A quadtree of `depth` levels splits every node into quadrants;
-// the exact integrals of the reconstruction over them (ShRectIntegrator) drive a warp along s, then along t
-// inside the chosen half. Berger's rules (section 3):
-//   - each warp probability is clamped to [epsilon, 1 - epsilon], so every quadrant keeps at least
-//     epsilon^2 of its parent and no part of the sphere is left unsampled;
-//   - in a node whose total integral is not positive the recursion stops and the sample stays uniform there
-//     (likewise a half whose integral is not positive is split evenly);
-//   - the pdf is accumulated through the levels, each multiplying it by 4 p_s p_t (equation 7), so
-//     pdf >= (4 epsilon^2)^depth / (4 pi) everywhere.
-// epsilon = 0 on a positive function gives Jarosz's distribution (pdf = f / integral of f on the leaves);
-// epsilon = 1/2 gives the uniform distribution. pbrt's shape: sample(u) -> (direction, pdf), pdf(direction).
+// is area-preserving (dOmega = 4 pi ds dt), so the warp's density against the measure 4 pi is the pdf per
+// steradian. The leaves are the exact integrals of the reconstruction over the 2^depth x 2^depth cells
+// (ShRectIntegrator), negative where the reconstruction rings below zero: Berger's clamping keeps every part
+// of the sphere sampled, pdf >= (4 epsilon^2)^depth / (4 pi). pbrt's shape: sample(u) -> (direction, pdf),
+// pdf(direction).
 #pragma once
 
 #include <array>
@@ -21,6 +15,7 @@
 #include <vector>
 
 #include "probelights/geometry.h"
+#include "probelights/hierarchical_warp.h"
 #include "probelights/spherical_harmonics.h"
 
 namespace probelights {
@@ -40,32 +35,15 @@ class ShSampler {
   double pdf(const Vec3& direction) const;
   // The point of the unit square that sample() maps to `direction` (the inverse warp).
   std::array<double, 2> invert(const Vec3& direction) const;
-  double integral() const { return levels_[0][0]; }  // of the reconstruction over the sphere
-  double epsilon() const { return epsilon_; }
-  int depth() const { return depth_; }
+  double integral() const { return warp_.integral(); }  // of the reconstruction over the sphere
+  double epsilon() const { return warp_.epsilon(); }
+  int depth() const { return warp_.depth(); }
 
   static std::array<double, 2> toSquare(const Vec3& d);  // (s, t) of a direction
   static Vec3 toSphere(double s, double t);
 
  private:
-  struct Split {
-    bool positive;  // the node's integral > 0: it is warped, else uniform below
-    double pS;      // probability of the first half along s (clamped)
-    double pT[2];   // probability of the first half along t, in each s half (clamped)
-  };
-  // Walks from the root to the node holding `direction`, calling visit(split, a, b) for each warped level (a,
-  // b: the halves taken along s and t); returns the local (s, t) in the last node.
-  template <class Visit>
-  std::array<double, 2> descend(const Vec3& direction, Visit&& visit) const;
-  const Split& split(int level, int is, int it) const {
-    return splits_[level][static_cast<std::size_t>(is) << level | it];
-  }
-
-  double epsilon_;
-  int depth_;
-  std::vector<std::vector<double>>
-      levels_;  // integrals of the nodes at each level, 2^k x 2^k, row-major (s, t)
-  std::vector<std::vector<Split>> splits_;  // per level < depth
+  HierarchicalWarp warp_;
 };
 
 // The Rec. 709 luminance SH of a probe, offset until the reconstruction is nowhere negative (Jarosz et al.'s
