@@ -113,8 +113,8 @@ def bake_world(context, settings, progress=lambda fraction: None, rendered=None,
         if advice:
             warnings.append(advice)
     total = float(np.dot(baked["total_rgb"], LUM))
-    captured = float(np.sum(baked["rgb"] @ LUM))
-    errors = baked.get("errors", {})
+    captured = float(np.sum(baked["lights"]["rgb"] @ LUM))
+    errors = baked["evaluation"] or {}
     return {"count": len(lights), "energy": 100.0 * captured / total if total > 0 else 0.0,
             "ms": 1000.0 * (time.perf_counter() - start),
             "timings": {"probe": probe_ms, "bake": 1000 * (bake_done - start) - probe_ms, "lamps": lamps_ms},

@@ -171,7 +171,8 @@ def make_lights(scene, world, baked, source, light_type="SUN", soft_shadows=True
 
     # A re-bake reuses the lamps it can (same type, in name order) and removes only the surplus: re-baking
     # thousands of lamps costs no removal.
-    count = len(baked["direction"])
+    lights = baked["lights"]
+    count = len(lights["direction"])
     reusable = sorted((o for o in collection.objects if o.get(OBJECT_TAG) and o.data is not None
                        and o.data.type == light_type and o.data.users == 1), key=lambda o: o.name)
     kept = reusable[:count]
@@ -180,8 +181,8 @@ def make_lights(scene, world, baked, source, light_type="SUN", soft_shadows=True
     strength = float(source.strength)
     follow_strength = source.strength_socket is not None and strength != 0.0
     objects = []
-    for i, direction in enumerate(np.asarray(baked["direction"], float)):
-        rgb = baked["rgb"][i]
+    for i, direction in enumerate(np.asarray(lights["direction"], float)):
+        rgb = lights["rgb"][i]
         if i < len(kept):
             obj = kept[i]
             data = obj.data
@@ -193,7 +194,7 @@ def make_lights(scene, world, baked, source, light_type="SUN", soft_shadows=True
             collection.objects.link(obj)
         obj.parent = holder
         if light_type == "SUN":
-            p = sun_parameters(direction, rgb, baked["angular_radius"][i], bpy.app.version, soft_shadows)
+            p = sun_parameters(direction, rgb, lights["angular_radius"][i], bpy.app.version, soft_shadows)
             data.angle = p["angle"]
             # Drawn small: the viewport draws a sun's direction line in object space; Cycles and EEVEE use only the
             # sun's direction (tests/blender/test_render.py renders a scaled sun).

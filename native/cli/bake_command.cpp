@@ -54,8 +54,9 @@ BakeArgs parseBakeArgs(const std::vector<std::string>& argv) {
   return a;
 }
 
-void printSummary(const BakeArgs& a, const Probe& probe, const BakeOptions& options, const BakeResult& r,
-                  double loadMs, const Evaluation& ev) {
+void printSummary(const BakeArgs& a, const Probe& probe, const BakeOptions& options, const EvaluatedBake& ev,
+                  double loadMs) {
+  const BakeResult& r = ev.bake;
   std::printf("probe      %s  %dx%d %s\n", a.probe.c_str(), probe.width(), probe.height(),
               toString(probe.projection().kind()).c_str());
   for (const auto& note : probe.report().notes) std::printf("note       %s\n", note.c_str());
@@ -80,7 +81,7 @@ void printSummary(const BakeArgs& a, const Probe& probe, const BakeOptions& opti
   std::printf(
       "\nenergy     probe integral (%.6g, %.6g, %.6g), lights sum (%.6g, %.6g, %.6g), max rel. diff %.1e\n",
       r.totalRgb[0], r.totalRgb[1], r.totalRgb[2], sum[0], sum[1], sum[2], worst);
-  if (ev.done) {
+  if (ev.evaluated) {
     std::printf("error      ");
     if (ev.effects & kDiffuse) std::printf("diffuse %.2f%%  ", 100 * ev.errors.diffuse);
     if (ev.effects & kShadow) std::printf("shadow %.2f%%  ", 100 * ev.errors.shadow);
@@ -100,20 +101,13 @@ int bakeCommand(const std::vector<std::string>& argv) {
   auto t0 = std::chrono::steady_clock::now();
   Probe probe = Probe::load(a.probe, a.probeOptions);
   const double loadMs = msSince(t0);
-  EvaluatedBake done = bakeEvaluated(probe, a.bake, a.accuracy);
-  BakeOptions used = a.bake;
-  used.lights = done.lights;
-  Evaluation evaluation;
-  evaluation.done = done.evaluated, evaluation.autoCount = done.autoCount, evaluation.met = done.met;
-  evaluation.tried = done.tried, evaluation.errors = done.errors, evaluation.energyShift = done.energyShift;
-  evaluation.effects = done.effects;
-  evaluation.refit = a.accuracy.refit;
+  const EvaluatedBake done = bakeEvaluated(probe, a.bake, a.accuracy);
   if (!a.output.empty()) {
-    writeJson(bakeToJson(a.probe, probe, used, done.bake, loadMs, evaluation), a.output, 2);
+    writeJson(bakeToJson({a.probe, probe, a.bake, done, loadMs}), a.output, 2);
     if (a.output == "-") a.quiet = true;
   }
   if (!a.preview.empty()) writePreview(probe, done.bake, a.preview);
-  if (!a.quiet) printSummary(a, probe, used, done.bake, loadMs, evaluation);
+  if (!a.quiet) printSummary(a, probe, a.bake, done, loadMs);
   return 0;
 }
 

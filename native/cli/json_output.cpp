@@ -1,63 +1,61 @@
 #include "json_output.h"
 
+#include <vector>
+
 namespace probelights::cli {
 
-nlohmann::json bakeToJson(const std::string& sourcePath, const Probe& probe, const BakeOptions& options,
-                          const BakeResult& result, double loadMs, const Evaluation& ev) {
-  using nlohmann::json;
-  json lights = json::array();
-  for (const Light& l : result.lights) {
-    lights.push_back({{"direction", {l.direction.x, l.direction.y, l.direction.z}},
-                      {"rgb", l.rgb},
-                      {"solid_angle", l.solidAngle},
-                      {"angular_radius", l.angularRadius},
-                      {"rect", {l.rect.x0, l.rect.y0, l.rect.x1, l.rect.y1}},
-                      {"energy_share", l.energyShare}});
+namespace {
+
+// Writes the layout into nested JSON objects; a table becomes an array of objects, one per row.
+class JsonWriter : public ResultWriter {
+ public:
+  explicit JsonWriter(nlohmann::json& root) { stack_.push_back(&root); }
+  void begin(const char* key) override { stack_.push_back(&(top()[key] = nlohmann::json::object())); }
+  void end() override { stack_.pop_back(); }
+  void null(const char* key) override { top()[key] = nullptr; }
+  void number(const char* key, double v) override { top()[key] = v; }
+  void integer(const char* key, long long v) override { top()[key] = v; }
+  void boolean(const char* key, bool v) override { top()[key] = v; }
+  void text(const char* key, const std::string& v) override { top()[key] = v; }
+  void texts(const char* key, const std::vector<std::string>& v) override { top()[key] = v; }
+  void numbers(const char* key, std::span<const double> v) override {
+    top()[key] = std::vector<double>(v.begin(), v.end());
   }
-  std::vector<std::string> notes = probe.report().notes;
-  notes.insert(notes.end(), result.notes.begin(), result.notes.end());
-  nlohmann::json evaluation = nullptr;
-  if (ev.done) {
-    evaluation = {{"effects", effectsToString(ev.effects)},
-                  {"refit", ev.refit},
-                  {"error", "relative RMS of luminance vs the probe"}};
-    if (ev.effects & kDiffuse) evaluation["diffuse"] = ev.errors.diffuse;
-    if (ev.effects & kShadow) evaluation["shadow"] = ev.errors.shadow;
-    if (ev.effects & kGlossy) evaluation["glossy"] = ev.errors.glossy;
-    if (ev.refit && !ev.autoCount) evaluation["energy_shift"] = ev.energyShift;
-    if (ev.autoCount) {
-      json tried = json::array();
-      for (auto [n, e] : ev.tried) tried.push_back({{"lights", n}, {"worst_error", e}});
-      evaluation["auto_count"] = {{"met", ev.met}, {"lights", options.lights}, {"tried", tried}};
+  void table(const char* key, std::size_t rows, const std::vector<ResultColumn>& columns) override {
+    nlohmann::json array = nlohmann::json::array();
+    double values[16];
+    for (std::size_t i = 0; i < rows; ++i) {
+      nlohmann::json row = nlohmann::json::object();
+      for (const ResultColumn& c : columns) {
+        c.fill(i, values);
+        auto value = [&](int k) {
+          return c.integer ? nlohmann::json(static_cast<long long>(values[k])) : nlohmann::json(values[k]);
+        };
+        if (c.width == 1) {
+          row[c.key] = value(0);
+        } else {
+          nlohmann::json v = nlohmann::json::array();
+          for (int k = 0; k < c.width; ++k) v.push_back(value(k));
+          row[c.key] = v;
+        }
+      }
+      array.push_back(row);
     }
+    top()[key] = array;
   }
-  return {
-      {"evaluation", evaluation},
-      {"source",
-       {{"path", sourcePath},
-        {"width", probe.width()},
-        {"height", probe.height()},
-        {"projection", toString(probe.projection().kind())},
-        {"negative_samples", probe.report().negativeSamples},
-        {"non_finite_samples", probe.report().nonFiniteSamples}}},
-      {"method", toString(options.method)},
-      {"sh", options.method == Method::SphericalHarmonics ? nlohmann::json{{"bands", options.shBands},
-                                                                           {"epsilon", options.shEpsilon},
-                                                                           {"depth", options.shDepth}}
-                                                          : nlohmann::json(nullptr)},
-      {"centroid", options.centroid == CentroidWeight::Energy ? "energy" : "energy2"},
-      {"requested_lights", options.lights},
-      {"horizon_split", result.horizonSplit},
-      {"working_resolution", {{"setting", options.resolution.toString()}, {"cell_size", result.cellSize}}},
-      {"lights", lights},
-      {"total_rgb", result.totalRgb},
-      {"timings_ms",
-       {{"load", loadMs},
-        {"tables", result.timings.tablesMs},
-        {"partition", result.timings.partitionMs},
-        {"lights", result.timings.lightsMs}}},
-      {"notes", notes},
-  };
+
+ private:
+  nlohmann::json& top() { return *stack_.back(); }
+  std::vector<nlohmann::json*> stack_;
+};
+
+}  // namespace
+
+nlohmann::json bakeToJson(const BakeReport& report) {
+  nlohmann::json root = nlohmann::json::object();
+  JsonWriter writer(root);
+  writeBake(writer, report);
+  return root;
 }
 
 }  // namespace probelights::cli

@@ -7,10 +7,13 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <chrono>
+
 #include "probelights/bake.h"
 #include "probelights/error.h"
 #include "probelights/evaluate.h"
 #include "probelights/probe.h"
+#include "probelights/result_layout.h"
 #include "probelights/sh_sampler.h"
 #include "probelights/spherical_harmonics.h"
 #include "probelights/tradeoff.h"
@@ -33,54 +36,59 @@ BakeOptions bakeOptions(const std::string& method, int lights, const std::string
   return o;
 }
 
-py::array_t<double> matrix(const std::vector<Light>& lights, int columns, auto&& row) {
-  py::array_t<double> a({static_cast<py::ssize_t>(lights.size()), static_cast<py::ssize_t>(columns)});
-  auto m = a.mutable_unchecked<2>();
-  for (std::size_t i = 0; i < lights.size(); ++i) {
-    auto values = row(lights[i]);
-    for (int k = 0; k < columns; ++k) m(i, k) = values[k];
+// Writes the core's result layout (result_layout.h) into nested dicts; a table becomes a dict of numpy
+// arrays, one per column ((N,) for a scalar column, (N, width) otherwise), so its keys are the JSON rows'
+// keys.
+class DictWriter : public ResultWriter {
+ public:
+  explicit DictWriter(py::dict root) { stack_.push_back(root); }
+  void begin(const char* key) override {
+    py::dict d;
+    stack_.back()[key] = d;
+    stack_.push_back(d);
   }
-  return a;
-}
+  void end() override { stack_.pop_back(); }
+  void null(const char* key) override { stack_.back()[key] = py::none(); }
+  void number(const char* key, double v) override { stack_.back()[key] = v; }
+  void integer(const char* key, long long v) override { stack_.back()[key] = v; }
+  void boolean(const char* key, bool v) override { stack_.back()[key] = v; }
+  void text(const char* key, const std::string& v) override { stack_.back()[key] = v; }
+  void texts(const char* key, const std::vector<std::string>& v) override { stack_.back()[key] = v; }
+  void numbers(const char* key, std::span<const double> v) override {
+    stack_.back()[key] = py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
+  }
+  void table(const char* key, std::size_t rows, const std::vector<ResultColumn>& columns) override {
+    py::dict t;
+    double values[16];
+    for (const ResultColumn& c : columns) {
+      std::vector<py::ssize_t> shape{static_cast<py::ssize_t>(rows)};
+      if (c.width > 1) shape.push_back(c.width);
+      auto fill = [&](auto array) {
+        auto* data = array.mutable_data();
+        for (std::size_t i = 0; i < rows; ++i) {
+          c.fill(i, values);
+          for (int k = 0; k < c.width; ++k)
+            data[i * c.width + k] = static_cast<decltype(data[0] + 0)>(values[k]);
+        }
+        t[c.key] = array;
+      };
+      if (c.integer)
+        fill(py::array_t<long long>(shape));
+      else
+        fill(py::array_t<double>(shape));
+    }
+    stack_.back()[key] = t;
+  }
 
-py::array_t<double> vector(const std::vector<Light>& lights, auto&& value) {
-  py::array_t<double> a(static_cast<py::ssize_t>(lights.size()));
-  auto m = a.mutable_unchecked<1>();
-  for (std::size_t i = 0; i < lights.size(); ++i) m(i) = value(lights[i]);
-  return a;
-}
+ private:
+  std::vector<py::dict> stack_;
+};
 
-py::dict toDict(const Probe& probe, const BakeOptions& o, const BakeResult& r) {
+py::dict toDict(const std::string& path, const Probe& probe, const BakeOptions& options,
+                const EvaluatedBake& bake, double loadMs = 0) {
   py::dict d;
-  d["direction"] = matrix(r.lights, 3, [](const Light& l) {
-    return std::array{l.direction.x, l.direction.y, l.direction.z};
-  });
-  d["rgb"] = matrix(r.lights, 3, [](const Light& l) { return l.rgb; });
-  d["solid_angle"] = vector(r.lights, [](const Light& l) { return l.solidAngle; });
-  d["angular_radius"] = vector(r.lights, [](const Light& l) { return l.angularRadius; });
-  d["energy_share"] = vector(r.lights, [](const Light& l) { return l.energyShare; });
-  py::array_t<int> rect({static_cast<py::ssize_t>(r.lights.size()), py::ssize_t{4}});
-  auto m = rect.mutable_unchecked<2>();
-  for (std::size_t i = 0; i < r.lights.size(); ++i) {
-    const Rect& q = r.lights[i].rect;
-    m(i, 0) = q.x0, m(i, 1) = q.y0, m(i, 2) = q.x1, m(i, 3) = q.y1;
-  }
-  d["rect"] = rect;
-  d["total_rgb"] = py::array_t<double>(3, r.totalRgb.data());
-  d["method"] = toString(o.method);
-  d["projection"] = toString(probe.projection().kind());
-  d["width"] = probe.width();
-  d["height"] = probe.height();
-  d["cell_size"] = r.cellSize;
-  d["horizon_split"] = r.horizonSplit;
-  d["negative_samples"] = probe.report().negativeSamples;
-  d["non_finite_samples"] = probe.report().nonFiniteSamples;
-  std::vector<std::string> notes = probe.report().notes;
-  notes.insert(notes.end(), r.notes.begin(), r.notes.end());
-  d["notes"] = notes;
-  d["timings_ms"] =
-      py::dict(py::arg("tables") = r.timings.tablesMs, py::arg("partition") = r.timings.partitionMs,
-               py::arg("lights") = r.timings.lightsMs);
+  DictWriter writer(d);
+  writeBake(writer, {path, probe, options, bake, loadMs});
   return d;
 }
 
@@ -108,21 +116,6 @@ ImageView viewOf(Pixels& pixels) {
                    pixels.strides(1) / static_cast<py::ssize_t>(sizeof(float))};
 }
 
-// The accuracy options (tradeoff.h): errors are added to the dict as "errors" {effect: rms}, "energy_shift",
-// "auto_count" {met, lights, tried}.
-void addEvaluation(py::dict& d, const EvaluatedBake& e) {
-  if (!e.evaluated) return;
-  py::dict errors;
-  if (e.effects & kDiffuse) errors["diffuse"] = e.errors.diffuse;
-  if (e.effects & kShadow) errors["shadow"] = e.errors.shadow;
-  if (e.effects & kGlossy) errors["glossy"] = e.errors.glossy;
-  d["errors"] = errors;
-  d["energy_shift"] = e.energyShift;
-  if (e.autoCount)
-    d["auto_count"] =
-        py::dict(py::arg("met") = e.met, py::arg("lights") = e.lights, py::arg("tried") = e.tried);
-}
-
 AccuracyOptions accuracyOptions(const std::string& effects, bool evaluate, bool refit, double maxError,
                                 int evaluatorWidth, bool moveDirections) {
   return {parseEffects(effects), evaluate, refit || moveDirections, maxError, evaluatorWidth, moveDirections};
@@ -145,31 +138,31 @@ py::dict bakePixels(Pixels pixels, const std::string& projection, const std::str
     probe.emplace(view, kind, policy);
     result = bakeEvaluated(*probe, options, accuracy);
   }
-  BakeOptions used = options;
-  used.lights = result.lights;
-  py::dict d = toDict(*probe, used, result.bake);
-  addEvaluation(d, result);
-  return d;
+  return toDict("", *probe, options, result);
 }
 
 #if PROBELIGHTS_MODULE_IO
 py::dict bakeFile(const std::string& path, const std::string& projection, const std::string& method,
                   int lights, const std::string& centroid, const std::string& resolution, bool horizon,
-                  int bands, double epsilon, const std::string& nonfinite) {
+                  int bands, double epsilon, const std::string& effects, bool evaluate, bool refit,
+                  bool moveDirections, double maxError, int evaluatorWidth, const std::string& nonfinite) {
   ProbeOptions probeOptions;
   probeOptions.projection = parseProjectionChoice(projection);
   probeOptions.nonFinite = parseNonFinitePolicy(nonfinite);
   const BakeOptions options = bakeOptions(method, lights, centroid, resolution, horizon, bands, epsilon);
+  const AccuracyOptions accuracy =
+      accuracyOptions(effects, evaluate, refit, maxError, evaluatorWidth, moveDirections);
   std::optional<Probe> probe;
-  BakeResult result;
+  EvaluatedBake result;
+  double loadMs = 0;
   {
     py::gil_scoped_release release;
+    const auto t0 = std::chrono::steady_clock::now();
     probe.emplace(Probe::load(path, probeOptions));
-    result = bake(*probe, options);
+    loadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    result = bakeEvaluated(*probe, options, accuracy);
   }
-  py::dict d = toDict(*probe, options, result);
-  d["path"] = path;
-  return d;
+  return toDict(path, *probe, options, result, loadMs);
 }
 #endif
 
@@ -273,18 +266,20 @@ PYBIND11_MODULE(_probelights, m) {
         py::arg("epsilon") = 0.01, py::arg("effects") = "diffuse", py::arg("evaluate") = false,
         py::arg("refit") = false, py::arg("move_directions") = false, py::arg("max_error") = 0.0,
         py::arg("evaluator_width") = 2048, py::arg("nonfinite") = "error",
-        "Bake a probe given as a float32 H x W x C array (rows top to bottom; not copied). Returns a dict of "
-        "numpy "
-        "arrays: direction (N,3), rgb (N,3), solid_angle, angular_radius, energy_share (N,), rect (N,4), "
-        "total_rgb (3,), "
-        "and metadata (notes, timings_ms, cell_size, ...). evaluate/refit/max_error add 'errors' on "
-        "`effects`.");
+        "Bake a probe given as a float32 H x W x C array (rows top to bottom; not copied). Returns the "
+        "layout the CLI's JSON has (result_layout.h): source, method, ..., lights: a dict of numpy arrays "
+        "(direction (N,3), rgb (N,3), solid_angle, angular_radius, energy_share (N,), rect (N,4)), "
+        "total_rgb (3,), timings_ms, notes, and evaluation (errors on `effects`) when "
+        "evaluate/refit/max_error ask for it.");
 #if PROBELIGHTS_MODULE_IO
   m.def("bake_file", &bakeFile, py::arg("path"), py::kw_only(), py::arg("projection") = "auto",
         py::arg("method") = "variance", py::arg("lights") = 16, py::arg("centroid") = "energy",
         py::arg("resolution") = "auto", py::arg("horizon") = false, py::arg("bands") = 8,
-        py::arg("epsilon") = 0.01, py::arg("nonfinite") = "error",
-        "Read a probe with OpenImageIO and bake it; the same dict as bake(), plus 'path'.");
+        py::arg("epsilon") = 0.01, py::arg("effects") = "diffuse", py::arg("evaluate") = false,
+        py::arg("refit") = false, py::arg("move_directions") = false, py::arg("max_error") = 0.0,
+        py::arg("evaluator_width") = 2048, py::arg("nonfinite") = "error",
+        "Read a probe with OpenImageIO and bake it: the same options and dict as bake(), with source.path "
+        "and timings_ms.load set.");
 #endif
   m.def(
       "sh_project", &shProject, py::arg("pixels"), py::kw_only(), py::arg("bands"),

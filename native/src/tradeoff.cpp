@@ -107,7 +107,7 @@ EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOpt
   if (a.refit) a.effects |= kDiffuse;
   if (!evaluating) {
     out.bake = bake(probe, options);
-    out.lights = options.lights;
+    out.count = options.lights;
     return out;
   }
   const Evaluator evaluator(probe, a.effects, EvaluatorOptions{a.evaluatorWidth, a.refit});
@@ -116,7 +116,7 @@ EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOpt
         autoCount(probe, evaluator, options, a.maxError, a.refit, 1024, a.moveDirections);
     out.bake = std::move(chosen.bake);
     out.autoCount = true, out.met = chosen.met, out.tried = std::move(chosen.tried),
-    out.lights = chosen.lights;
+    out.count = chosen.lights;
     char line[200];
     if (chosen.met)
       std::snprintf(line, sizeof line, "auto count: %d lights, worst error %.2f%% (asked at most %.2f%%)",
@@ -128,7 +128,7 @@ EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOpt
     out.bake.notes.push_back(line);
   } else {
     out.bake = bake(probe, options);
-    out.lights = options.lights;
+    out.count = options.lights;
     if (a.refit) {
       if (out.bake.lights.size() > kMaxRefitLights)
         throw Error("the refit takes at most " + std::to_string(kMaxRefitLights) + " lights");
@@ -136,6 +136,7 @@ EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOpt
     }
   }
   out.evaluated = true;
+  out.refit = a.refit;
   out.effects = a.effects;
   out.errors = evaluator.evaluate(out.bake.lights);
   return out;

@@ -241,7 +241,7 @@ def test_read_and_rendered_worlds_agree():
     read = sun_direction(brightest(bake(count=8)))
     assert "image 'spot'" in bpy.context.scene.probe_lights.last_source
     rendered = _probelights.bake(bake_module._rendered_probe(world), lights=8)
-    brightest_rendered = rendered["direction"][np.argmax(rendered["rgb"] @ LUM)]
+    brightest_rendered = rendered["lights"]["direction"][np.argmax(rendered["lights"]["rgb"] @ LUM)]
     assert harness.angle_deg(read, brightest_rendered) < 2.0, (read, brightest_rendered)
     print("  read vs rendered world: %.2f degrees apart" % harness.angle_deg(read, brightest_rendered))
 

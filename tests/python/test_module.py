@@ -1,6 +1,7 @@
 """The _probelights module from plain Python (the system Python Blender runs): arrays in, numpy arrays out."""
 
 import math
+import os
 import threading
 
 import numpy as np
@@ -12,11 +13,11 @@ import _probelights as pl
 def test_uniform_probe_total_is_four_pi_l():
     a = np.full((64, 128, 3), (0.5, 1.0, 2.0), np.float32)
     r = pl.bake(a, lights=8)
-    assert r["direction"].shape == (8, 3) and r["rgb"].shape == (8, 3) and r["rect"].shape == (8, 4)
-    assert np.allclose(r["rgb"].sum(axis=0), 4 * math.pi * np.array([0.5, 1.0, 2.0]), rtol=1e-10)
-    assert np.allclose(r["total_rgb"], r["rgb"].sum(axis=0), rtol=1e-12)
-    assert np.allclose(np.linalg.norm(r["direction"], axis=1), 1.0)
-    assert r["energy_share"].sum() == pytest.approx(1.0)
+    assert r["lights"]["direction"].shape == (8, 3) and r["lights"]["rgb"].shape == (8, 3) and r["lights"]["rect"].shape == (8, 4)
+    assert np.allclose(r["lights"]["rgb"].sum(axis=0), 4 * math.pi * np.array([0.5, 1.0, 2.0]), rtol=1e-10)
+    assert np.allclose(r["total_rgb"], r["lights"]["rgb"].sum(axis=0), rtol=1e-12)
+    assert np.allclose(np.linalg.norm(r["lights"]["direction"], axis=1), 1.0)
+    assert r["lights"]["energy_share"].sum() == pytest.approx(1.0)
 
 
 def test_flipped_and_strided_views_are_read_in_place():
@@ -25,24 +26,24 @@ def test_flipped_and_strided_views_are_read_in_place():
     flipped = a[::-1]  # Blender's rows are bottom-up: the add-on passes this view
     r1 = pl.bake(np.ascontiguousarray(flipped), lights=5)
     r2 = pl.bake(flipped, lights=5)
-    assert np.array_equal(r1["rgb"], r2["rgb"]) and np.array_equal(r1["direction"], r2["direction"])
+    assert np.array_equal(r1["lights"]["rgb"], r2["lights"]["rgb"]) and np.array_equal(r1["lights"]["direction"], r2["lights"]["direction"])
     # Alpha is ignored; a grey H x W array is replicated.
     r3 = pl.bake(np.ascontiguousarray(a[..., :3]), lights=5)
     r4 = pl.bake(a, lights=5)
-    assert np.array_equal(r3["rgb"], r4["rgb"])
+    assert np.array_equal(r3["lights"]["rgb"], r4["lights"]["rgb"])
     grey = pl.bake(a[..., 0].copy(), lights=3)
-    assert np.allclose(grey["rgb"][:, 0], grey["rgb"][:, 1])
+    assert np.allclose(grey["lights"]["rgb"][:, 0], grey["lights"]["rgb"][:, 1])
 
 
 def test_other_dtypes_are_converted():
     r = pl.bake(np.ones((8, 16, 3), np.float64), lights=2)
-    assert r["rgb"].sum() == pytest.approx(3 * 4 * math.pi)
+    assert r["lights"]["rgb"].sum() == pytest.approx(3 * 4 * math.pi)
 
 
 def test_lat_long_convention():
     a = np.zeros((32, 64, 3), np.float32)
     a[15, 16] = 10.0  # a quarter from the left, just above the horizon: +Y
-    d = pl.bake(a, lights=1)["direction"][0]
+    d = pl.bake(a, lights=1)["lights"]["direction"][0]
     assert d[1] > 0.99
 
 
@@ -65,7 +66,7 @@ def test_bad_pixels():
     with pytest.raises(pl.Error, match=r"1 NaN/Inf samples, first at pixel \(3, 2\)"):
         pl.bake(a)
     r = pl.bake(a, nonfinite="zero", lights=2)
-    assert np.isfinite(r["rgb"]).all() and r["non_finite_samples"] == 1
+    assert np.isfinite(r["lights"]["rgb"]).all() and r["source"]["non_finite_samples"] == 1
     with pytest.raises(pl.Error, match="H x W"):
         pl.bake(np.ones(10, np.float32))
     with pytest.raises(pl.Error, match="empty"):
@@ -82,9 +83,39 @@ def test_bake_file_errors(tmp_path):
 
 def test_bake_file_on_the_bundled_probe(bundled_probe):
     r = pl.bake_file(bundled_probe, lights=16)
-    assert r["width"] == 1024 and r["projection"] == "latlong" and len(r["rgb"]) == 16
+    assert r["source"]["width"] == 1024 and r["source"]["projection"] == "latlong"
+    assert len(r["lights"]["rgb"]) == 16 and r["source"]["path"] == bundled_probe
     assert "auto" in r["notes"][0]
-    assert set(r["timings_ms"]) == {"tables", "partition", "lights"}
+    assert set(r["timings_ms"]) == {"load", "tables", "partition", "lights"} and r["timings_ms"]["load"] > 0
+
+
+def key_paths(value, prefix=""):
+    """Every key path of a result: nested objects by name, a table (the JSON's list of rows, the module's dict
+    of columns) by its columns."""
+    if isinstance(value, list) and value and isinstance(value[0], dict):
+        value = {k: None for row in value for k in row}
+    if not isinstance(value, dict):
+        return {prefix}
+    return {p for k, v in value.items() for p in key_paths(v, prefix + "." + k if prefix else k)}
+
+
+@pytest.mark.parametrize("method", ["variance", "sh"])
+def test_the_module_and_the_cli_give_one_layout(bundled_probe, tmp_path, method):
+    """The module's dict and the CLI's JSON come from the core's one result layout (result_layout.h): the same
+    keys, nested the same way, and the same values."""
+    import json
+    import subprocess
+    cli = os.path.join(os.environ.get("PROBELIGHTS_BUILD", "build"), "bin", "probelights")
+    out = tmp_path / "r.json"
+    subprocess.run([cli, "bake", bundled_probe, "--method", method, "--max-error", "2%", "--effects",
+                    "diffuse,shadow", "--refit", "-q", "-o", str(out)], check=True)
+    document = json.loads(out.read_text())
+    r = pl.bake_file(bundled_probe, method=method, max_error=0.02, effects="diffuse,shadow", refit=True)
+    assert key_paths(r) == key_paths(document)
+    assert r["evaluation"]["auto_count"]["lights"] == document["evaluation"]["auto_count"]["lights"]
+    assert np.allclose(r["lights"]["rgb"], [row["rgb"] for row in document["lights"]], rtol=1e-12)
+    assert list(r["evaluation"]["auto_count"]["tried"]["lights"]) == [
+        row["lights"] for row in document["evaluation"]["auto_count"]["tried"]]
 
 
 def test_the_gil_is_released_and_results_are_deterministic():
@@ -101,7 +132,7 @@ def test_the_gil_is_released_and_results_are_deterministic():
     for t in threads:
         t.join()
     for r in results:
-        assert np.array_equal(r["rgb"], reference["rgb"])
+        assert np.array_equal(r["lights"]["rgb"], reference["lights"]["rgb"])
 
 
 def test_sh_project_white_furnace_and_irradiance():
@@ -123,7 +154,7 @@ def test_sh_sample_and_sh_bake(bundled_probe):
     d2, p2 = pl.sh_sample(a, bands=6, epsilon=0.01, samples=500, seed=7)
     assert np.array_equal(d, d2) and np.array_equal(p, p2)
     r = pl.bake(a, method="sh", lights=8, bands=6)
-    assert len(r["rgb"]) == 8 and np.allclose(r["rgb"].sum(0), r["total_rgb"], rtol=1e-12)
+    assert len(r["lights"]["rgb"]) == 8 and np.allclose(r["lights"]["rgb"].sum(0), r["total_rgb"], rtol=1e-12)
     with pytest.raises(pl.Error, match="epsilon"):
         pl.sh_sample(a, bands=4, epsilon=0.7)
 

@@ -62,12 +62,12 @@ struct AccuracyOptions {
 
 struct EvaluatedBake {
   BakeResult bake;
-  bool evaluated = false, autoCount = false, met = false;
+  bool evaluated = false, autoCount = false, met = false, refit = false;
   unsigned effects = 0;
   EffectErrors errors;
   double energyShift = 0;  // of the refit
-  int lights = 0;          // the count used (chosen when autoCount)
-  std::vector<std::pair<int, double>> tried;
+  int count = 0;           // the light count asked for, or chosen when autoCount (bake.lights may hold fewer)
+  std::vector<std::pair<int, double>> tried;  // autoCount: (count, worst error) of every count tried
 };
 
 EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOptions accuracy);

@@ -1,0 +1,60 @@
+// One layout of a bake's result for every shell: the CLI's JSON (native/cli/json_output.cpp) and the Python
+// module's dict (native/python/module.cpp) are both written by writeBake() through a ResultWriter, so they
+// have the same keys, nested the same way (tests/python/test_module.py checks it). The layout (README, "JSON"):
+//   source {path, width, height, projection, negative_samples, non_finite_samples}
+//   method, sh {bands, epsilon, depth} | null, centroid, requested_lights, horizon_split,
+//   working_resolution {setting, cell_size},
+//   lights: a table, one row per light: direction (3), rgb (3), solid_angle, angular_radius, rect (4),
+//           energy_share
+//   total_rgb (3), timings_ms {load, tables, partition, lights}, notes,
+//   evaluation {effects, refit, error, diffuse | shadow | glossy, energy_shift, auto_count {met, lights,
+//               tried: a table of lights, worst_error}} | null
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "probelights/bake.h"
+#include "probelights/probe.h"
+#include "probelights/tradeoff.h"
+
+namespace probelights {
+
+// A column of a table: `width` numbers per row (1: a scalar), filled row by row.
+struct ResultColumn {
+  const char* key;
+  int width = 1;
+  bool integer = false;
+  std::function<void(std::size_t row, double* out)> fill;
+};
+
+// What a shell implements to receive the layout: keyed values inside nested objects.
+class ResultWriter {
+ public:
+  virtual ~ResultWriter() = default;
+  virtual void begin(const char* key) = 0;  // a nested object, until end()
+  virtual void end() = 0;
+  virtual void null(const char* key) = 0;
+  virtual void number(const char* key, double value) = 0;
+  virtual void integer(const char* key, long long value) = 0;
+  virtual void boolean(const char* key, bool value) = 0;
+  virtual void text(const char* key, const std::string& value) = 0;
+  virtual void texts(const char* key, const std::vector<std::string>& values) = 0;
+  virtual void numbers(const char* key, std::span<const double> values) = 0;
+  virtual void table(const char* key, std::size_t rows, const std::vector<ResultColumn>& columns) = 0;
+};
+
+struct BakeReport {
+  std::string path;  // the probe's file; "" for a caller's pixels (written as null)
+  const Probe& probe;
+  const BakeOptions& options;
+  const EvaluatedBake& bake;
+  double loadMs = 0;
+};
+
+void writeBake(ResultWriter& writer, const BakeReport& report);
+
+}  // namespace probelights

@@ -1,0 +1,93 @@
+#include "probelights/result_layout.h"
+
+namespace probelights {
+
+namespace {
+
+void writeEvaluation(ResultWriter& w, const EvaluatedBake& e) {
+  if (!e.evaluated) return w.null("evaluation");
+  w.begin("evaluation");
+  w.text("effects", effectsToString(e.effects));
+  w.boolean("refit", e.refit);
+  w.text("error", "relative RMS of luminance vs the probe");
+  if (e.effects & kDiffuse) w.number("diffuse", e.errors.diffuse);
+  if (e.effects & kShadow) w.number("shadow", e.errors.shadow);
+  if (e.effects & kGlossy) w.number("glossy", e.errors.glossy);
+  if (e.refit && !e.autoCount) w.number("energy_shift", e.energyShift);
+  if (e.autoCount) {
+    w.begin("auto_count");
+    w.boolean("met", e.met);
+    w.integer("lights", e.count);
+    w.table("tried", e.tried.size(),
+            {{"lights", 1, true, [&](std::size_t i, double* out) { out[0] = e.tried[i].first; }},
+             {"worst_error", 1, false, [&](std::size_t i, double* out) { out[0] = e.tried[i].second; }}});
+    w.end();
+  }
+  w.end();
+}
+
+}  // namespace
+
+void writeBake(ResultWriter& w, const BakeReport& report) {
+  const Probe& probe = report.probe;
+  const BakeOptions& o = report.options;
+  const BakeResult& r = report.bake.bake;
+  w.begin("source");
+  if (report.path.empty())
+    w.null("path");
+  else
+    w.text("path", report.path);
+  w.integer("width", probe.width());
+  w.integer("height", probe.height());
+  w.text("projection", toString(probe.projection().kind()));
+  w.integer("negative_samples", probe.report().negativeSamples);
+  w.integer("non_finite_samples", probe.report().nonFiniteSamples);
+  w.end();
+  w.text("method", toString(o.method));
+  if (o.method == Method::SphericalHarmonics) {
+    w.begin("sh");
+    w.integer("bands", o.shBands);
+    w.number("epsilon", o.shEpsilon);
+    w.integer("depth", o.shDepth);
+    w.end();
+  } else {
+    w.null("sh");
+  }
+  w.text("centroid", toString(o.centroid));
+  w.integer("requested_lights", report.bake.count);
+  w.boolean("horizon_split", r.horizonSplit);
+  w.begin("working_resolution");
+  w.text("setting", o.resolution.toString());
+  w.integer("cell_size", r.cellSize);
+  w.end();
+  const auto& L = r.lights;
+  w.table("lights", L.size(),
+          {{"direction", 3, false,
+            [&](std::size_t i, double* out) {
+              out[0] = L[i].direction.x, out[1] = L[i].direction.y, out[2] = L[i].direction.z;
+            }},
+           {"rgb", 3, false,
+            [&](std::size_t i, double* out) {
+              out[0] = L[i].rgb[0], out[1] = L[i].rgb[1], out[2] = L[i].rgb[2];
+            }},
+           {"solid_angle", 1, false, [&](std::size_t i, double* out) { out[0] = L[i].solidAngle; }},
+           {"angular_radius", 1, false, [&](std::size_t i, double* out) { out[0] = L[i].angularRadius; }},
+           {"rect", 4, true,
+            [&](std::size_t i, double* out) {
+              out[0] = L[i].rect.x0, out[1] = L[i].rect.y0, out[2] = L[i].rect.x1, out[3] = L[i].rect.y1;
+            }},
+           {"energy_share", 1, false, [&](std::size_t i, double* out) { out[0] = L[i].energyShare; }}});
+  w.numbers("total_rgb", r.totalRgb);
+  w.begin("timings_ms");
+  w.number("load", report.loadMs);
+  w.number("tables", r.timings.tablesMs);
+  w.number("partition", r.timings.partitionMs);
+  w.number("lights", r.timings.lightsMs);
+  w.end();
+  std::vector<std::string> notes = probe.report().notes;
+  notes.insert(notes.end(), r.notes.begin(), r.notes.end());
+  w.texts("notes", notes);
+  writeEvaluation(w, report.bake);
+}
+
+}  // namespace probelights
