@@ -121,12 +121,12 @@ class PROBE_LIGHTS_OT_tradeoff(bpy.types.Operator):
         n = TRADEOFF_COUNTS[self._done]
         pixels, projection = self._probe[0], self._probe[1]
         rows = native.tradeoff(pixels, projection=projection, effects="diffuse,shadow", counts=[n],
-                               methods=[self._method], refit=True, evaluator_width=512)
-        for r in rows:
+                               methods=[self._method], refit=True, evaluator_width=512)["rows"]
+        for i in range(len(rows["lights"])):
             row = context.scene.probe_lights.tradeoff.add()
-            row.lights, row.refit, row.bake_ms = r["lights"], r["refit"], r["bake_ms"]
-            row.click_ms = self._probe_ms + r["bake_ms"] + r["lights"] * self._lamp_ms
-            row.diffuse, row.shadow = r["diffuse"], r["shadow"]
+            row.lights, row.refit, row.bake_ms = int(rows["lights"][i]), bool(rows["refit"][i]), rows["bake_ms"][i]
+            row.click_ms = self._probe_ms + row.bake_ms + row.lights * self._lamp_ms
+            row.diffuse, row.shadow = rows["diffuse"][i], rows["shadow"][i]
         self._done += 1
         return self._done == len(TRADEOFF_COUNTS)
 

@@ -27,9 +27,20 @@ class JsonWriter : public ResultWriter {
     for (std::size_t i = 0; i < rows; ++i) {
       nlohmann::json row = nlohmann::json::object();
       for (const ResultColumn& c : columns) {
+        if (c.kind == ResultColumn::Kind::Text) {
+          row[c.key] = c.text(i);
+          continue;
+        }
         c.fill(i, values);
         auto value = [&](int k) {
-          return c.integer ? nlohmann::json(static_cast<long long>(values[k])) : nlohmann::json(values[k]);
+          switch (c.kind) {
+            case ResultColumn::Kind::Integer:
+              return nlohmann::json(static_cast<long long>(values[k]));
+            case ResultColumn::Kind::Boolean:
+              return nlohmann::json(values[k] != 0);
+            default:
+              return nlohmann::json(values[k]);
+          }
         };
         if (c.width == 1) {
           row[c.key] = value(0);
@@ -55,6 +66,20 @@ nlohmann::json bakeToJson(const BakeReport& report) {
   nlohmann::json root = nlohmann::json::object();
   JsonWriter writer(root);
   writeBake(writer, report);
+  return root;
+}
+
+nlohmann::json sourceToJson(const std::string& path, const Probe& probe) {
+  nlohmann::json root = nlohmann::json::object();
+  JsonWriter writer(root);
+  writeSource(writer, path, probe);
+  return root["source"];
+}
+
+nlohmann::json tradeoffToJson(const TradeoffReport& report) {
+  nlohmann::json root = nlohmann::json::object();
+  JsonWriter writer(root);
+  writeTradeoff(writer, report);
   return root;
 }
 

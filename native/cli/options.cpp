@@ -97,13 +97,6 @@ void writeJson(const nlohmann::json& j, const std::string& output, int indent) {
   if (!(out << text)) throw Error("cannot write '" + output + "'");
 }
 
-nlohmann::json sourceJson(const std::string& path, const Probe& probe) {
-  return {{"path", path},
-          {"width", probe.width()},
-          {"height", probe.height()},
-          {"projection", toString(probe.projection().kind())}};
-}
-
 double msSince(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
 }

@@ -46,7 +46,6 @@ std::vector<std::string> splitList(const std::string& text);              // "a,
 // JSON to a file, or standard output for "-"; indented by `indent`, by default compact on standard output and
 // by 1 in a file.
 void writeJson(const nlohmann::json& j, const std::string& output, int indent = -2);
-nlohmann::json sourceJson(const std::string& path, const Probe& probe);
 
 double msSince(std::chrono::steady_clock::time_point t);
 

@@ -1,6 +1,7 @@
 // probelights sh and probelights sample: the probe's SH coefficients, and samples of its SH importance
 // sampler (Jarosz et al. 2009 warping, Berger 2011 epsilon clamping). Usage in main.cpp.
 #include "commands.h"
+#include "json_output.h"
 #include "options.h"
 #include "probelights/sh_sampler.h"
 #include "probelights/spherical_harmonics.h"
@@ -59,7 +60,7 @@ int shCommand(const std::vector<std::string>& argv) {
   if (a.irradiance) sh = irradianceCoefficients(sh);
   nlohmann::json c = nlohmann::json::array();
   for (const Rgb& v : sh.c) c.push_back(v);
-  writeJson({{"source", sourceJson(a.probe, probe)},
+  writeJson({{"source", sourceToJson(a.probe, probe)},
              {"bands", a.bands},
              {"convention", kConvention},
              {"quantity", a.irradiance ? "irradiance" : "radiance"},
@@ -78,7 +79,7 @@ int sampleCommand(const std::vector<std::string>& argv) {
     dirs.push_back({s.direction.x, s.direction.y, s.direction.z});
     pdfs.push_back(s.pdf);
   }
-  writeJson({{"source", sourceJson(a.probe, probe)},
+  writeJson({{"source", sourceToJson(a.probe, probe)},
              {"bands", a.bands},
              {"epsilon", a.epsilon},
              {"depth", a.depth},

@@ -2,9 +2,9 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <tuple>
 
 #include "commands.h"
+#include "json_output.h"
 #include "options.h"
 #include "probelights/evaluate.h"
 #include "probelights/tradeoff.h"
@@ -48,25 +48,15 @@ int tradeoffCommand(const std::vector<std::string>& argv) {
        {std::pair{kDiffuse, "diffuse"}, std::pair{kShadow, "shadow"}, std::pair{kGlossy, "glossy"}})
     if (effects & bit) std::printf(" %9s", name);
   std::printf("\n");
-  nlohmann::json rowsJson = nlohmann::json::array();
   for (const TradeoffRow& r : rows) {
-    std::printf("%-11s %6d %6s %5s %10.2f", toString(r.method).c_str(), r.made, r.resolution.c_str(),
-                r.refit ? "yes" : "no", r.bakeMs);
-    nlohmann::json row{{"method", toString(r.method)}, {"lights", r.lights}, {"made", r.made},
-                       {"resolution", r.resolution},   {"refit", r.refit},   {"bake_ms", r.bakeMs}};
-    for (auto [bit, name, value] :
-         {std::tuple{kDiffuse, "diffuse", r.errors.diffuse}, std::tuple{kShadow, "shadow", r.errors.shadow},
-          std::tuple{kGlossy, "glossy", r.errors.glossy}})
-      if (effects & bit) std::printf(" %8.3f%%", 100 * value), row[name] = value;
+    std::printf("%-11s %6d %6s %5s %10.2f", toString(r.method).c_str(), r.made,
+                r.resolution ? r.resolution->toString().c_str() : "-", r.refit ? "yes" : "no", r.bakeMs);
+    for (auto [bit, value] : {std::pair{kDiffuse, r.errors.diffuse}, std::pair{kShadow, r.errors.shadow},
+                              std::pair{kGlossy, r.errors.glossy}})
+      if (effects & bit) std::printf(" %8.3f%%", 100 * value);
     std::printf("\n");
-    rowsJson.push_back(row);
   }
-  if (!output.empty())
-    writeJson({{"source", sourceJson(probePath, probe)},
-               {"effects", effectsToString(effects)},
-               {"error", "relative RMS of luminance over the effect's sample points"},
-               {"rows", rowsJson}},
-              output);
+  if (!output.empty()) writeJson(tradeoffToJson({probePath, probe, effects, rows}), output);
   if (!plot.empty()) {
     writeTradeoffPlot(rows, effects,
                       std::filesystem::path(probePath).filename().string() + ": error vs bake time", plot);

@@ -38,7 +38,8 @@ void writeTradeoffPlot(const std::vector<TradeoffRow>& rows, unsigned effects, c
   OIIO::ImageBufAlgo::fill(img, white);
   std::vector<TradeoffRow> pts;
   for (const TradeoffRow& r : rows)
-    if (r.errors.worst(effects) > 0 && r.bakeMs > 0 && (r.resolution == "full" || r.resolution == "-"))
+    if (r.errors.worst(effects) > 0 && r.bakeMs > 0 &&
+        (!r.resolution || r.resolution->mode == WorkingResolution::Mode::Full))
       pts.push_back(r);
   if (pts.empty()) throw Error("nothing to plot");
   double tmin = 1e300, tmax = 0, emin = 1e300, emax = 0;

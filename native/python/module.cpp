@@ -61,6 +61,12 @@ class DictWriter : public ResultWriter {
     py::dict t;
     double values[16];
     for (const ResultColumn& c : columns) {
+      if (c.kind == ResultColumn::Kind::Text) {
+        py::list words;
+        for (std::size_t i = 0; i < rows; ++i) words.append(c.text(i));
+        t[c.key] = words;
+        continue;
+      }
       std::vector<py::ssize_t> shape{static_cast<py::ssize_t>(rows)};
       if (c.width > 1) shape.push_back(c.width);
       auto fill = [&](auto array) {
@@ -68,12 +74,14 @@ class DictWriter : public ResultWriter {
         for (std::size_t i = 0; i < rows; ++i) {
           c.fill(i, values);
           for (int k = 0; k < c.width; ++k)
-            data[i * c.width + k] = static_cast<decltype(data[0] + 0)>(values[k]);
+            data[i * c.width + k] = static_cast<std::remove_reference_t<decltype(data[0])>>(values[k]);
         }
         t[c.key] = array;
       };
-      if (c.integer)
+      if (c.kind == ResultColumn::Kind::Integer)
         fill(py::array_t<long long>(shape));
+      else if (c.kind == ResultColumn::Kind::Boolean)
+        fill(py::array_t<bool>(shape));
       else
         fill(py::array_t<double>(shape));
     }
@@ -166,9 +174,8 @@ py::dict bakeFile(const std::string& path, const std::string& projection, const 
 }
 #endif
 
-// The tradeoff grid (tradeoff.h) as a list of dicts: method, lights, made, resolution, refit, bake_ms, and
-// the errors.
-py::list tradeoffRows(Pixels pixels, const std::string& projection, const std::string& effects,
+// The tradeoff grid (tradeoff.h) in the layout of the CLI's tradeoff JSON (result_layout.h).
+py::dict tradeoffRows(Pixels pixels, const std::string& projection, const std::string& effects,
                       const std::vector<int>& counts, const std::vector<std::string>& methods, bool refit,
                       int evaluatorWidth, const std::string& nonfinite) {
   const ImageView view = viewOf(pixels);
@@ -182,23 +189,17 @@ py::list tradeoffRows(Pixels pixels, const std::string& projection, const std::s
   options.refit = refit;
   const unsigned e = parseEffects(effects);
   std::vector<TradeoffRow> rows;
+  std::optional<Probe> probe;
   {
     py::gil_scoped_release release;
-    Probe probe(view, kind, policy);
-    Evaluator evaluator(probe, e, EvaluatorOptions{evaluatorWidth, refit});
-    rows = tradeoff(probe, evaluator, options);
+    probe.emplace(view, kind, policy);
+    Evaluator evaluator(*probe, e, EvaluatorOptions{evaluatorWidth, refit});
+    rows = tradeoff(*probe, evaluator, options);
   }
-  py::list out;
-  for (const TradeoffRow& r : rows) {
-    py::dict d(py::arg("method") = toString(r.method), py::arg("lights") = r.lights, py::arg("made") = r.made,
-               py::arg("resolution") = r.resolution, py::arg("refit") = r.refit,
-               py::arg("bake_ms") = r.bakeMs);
-    if (e & kDiffuse) d["diffuse"] = r.errors.diffuse;
-    if (e & kShadow) d["shadow"] = r.errors.shadow;
-    if (e & kGlossy) d["glossy"] = r.errors.glossy;
-    out.append(d);
-  }
-  return out;
+  py::dict d;
+  DictWriter writer(d);
+  writeTradeoff(writer, {"", *probe, e, rows});
+  return d;
 }
 
 // SH coefficients (bands^2 x 3) of the radiance, or of the irradiance.
@@ -253,13 +254,14 @@ py::tuple shSample(Pixels pixels, int bands, double epsilon, int samples, int de
 PYBIND11_MODULE(_probelights, m) {
   m.doc() = "probelights: turn an HDR light probe into N lights that carry exactly its energy";
   py::register_exception<Error>(m, "Error", PyExc_ValueError);
-  m.def("tradeoff", &tradeoffRows, py::arg("pixels"), py::kw_only(), py::arg("projection") = "latlong",
-        py::arg("effects") = "diffuse,shadow",
-        py::arg("counts") = std::vector<int>{4, 8, 16, 32, 64, 128, 256},
-        py::arg("methods") = std::vector<std::string>{"median-cut", "variance", "sh"},
-        py::arg("refit") = true, py::arg("evaluator_width") = 2048, py::arg("nonfinite") = "error",
-        "What accuracy costs in time: one row per (method, count, refit) with bake_ms and each effect's "
-        "error.");
+  m.def(
+      "tradeoff", &tradeoffRows, py::arg("pixels"), py::kw_only(), py::arg("projection") = "latlong",
+      py::arg("effects") = "diffuse,shadow", py::arg("counts") = std::vector<int>{4, 8, 16, 32, 64, 128, 256},
+      py::arg("methods") = std::vector<std::string>{"median-cut", "variance", "sh"}, py::arg("refit") = true,
+      py::arg("evaluator_width") = 2048, py::arg("nonfinite") = "error",
+      "What accuracy costs in time, in the layout of the CLI's tradeoff JSON: source, effects, error, and "
+      "rows: a dict of columns (method, lights, made, resolution, refit, bake_ms, each effect's error), one "
+      "entry per (method, count, refit).");
   m.def("bake", &bakePixels, py::arg("pixels"), py::kw_only(), py::arg("projection") = "latlong",
         py::arg("method") = "variance", py::arg("lights") = 16, py::arg("centroid") = "energy",
         py::arg("resolution") = "auto", py::arg("horizon") = false, py::arg("bands") = 8,

@@ -19,8 +19,10 @@ void writeEvaluation(ResultWriter& w, const EvaluatedBake& e) {
     w.boolean("met", e.met);
     w.integer("lights", e.count);
     w.table("tried", e.tried.size(),
-            {{"lights", 1, true, [&](std::size_t i, double* out) { out[0] = e.tried[i].first; }},
-             {"worst_error", 1, false, [&](std::size_t i, double* out) { out[0] = e.tried[i].second; }}});
+            {{"lights", 1, ResultColumn::Kind::Integer,
+              [&](std::size_t i, double* out) { out[0] = e.tried[i].first; }},
+             {"worst_error", 1, ResultColumn::Kind::Number,
+              [&](std::size_t i, double* out) { out[0] = e.tried[i].second; }}});
     w.end();
   }
   w.end();
@@ -28,21 +30,25 @@ void writeEvaluation(ResultWriter& w, const EvaluatedBake& e) {
 
 }  // namespace
 
-void writeBake(ResultWriter& w, const BakeReport& report) {
-  const Probe& probe = report.probe;
-  const BakeOptions& o = report.options;
-  const BakeResult& r = report.bake.bake;
+void writeSource(ResultWriter& w, const std::string& path, const Probe& probe) {
   w.begin("source");
-  if (report.path.empty())
+  if (path.empty())
     w.null("path");
   else
-    w.text("path", report.path);
+    w.text("path", path);
   w.integer("width", probe.width());
   w.integer("height", probe.height());
   w.text("projection", toString(probe.projection().kind()));
   w.integer("negative_samples", probe.report().negativeSamples);
   w.integer("non_finite_samples", probe.report().nonFiniteSamples);
   w.end();
+}
+
+void writeBake(ResultWriter& w, const BakeReport& report) {
+  const Probe& probe = report.probe;
+  const BakeOptions& o = report.options;
+  const BakeResult& r = report.bake.bake;
+  writeSource(w, report.path, probe);
   w.text("method", toString(o.method));
   if (o.method == Method::SphericalHarmonics) {
     w.begin("sh");
@@ -62,21 +68,24 @@ void writeBake(ResultWriter& w, const BakeReport& report) {
   w.end();
   const auto& L = r.lights;
   w.table("lights", L.size(),
-          {{"direction", 3, false,
+          {{"direction", 3, ResultColumn::Kind::Number,
             [&](std::size_t i, double* out) {
               out[0] = L[i].direction.x, out[1] = L[i].direction.y, out[2] = L[i].direction.z;
             }},
-           {"rgb", 3, false,
+           {"rgb", 3, ResultColumn::Kind::Number,
             [&](std::size_t i, double* out) {
               out[0] = L[i].rgb[0], out[1] = L[i].rgb[1], out[2] = L[i].rgb[2];
             }},
-           {"solid_angle", 1, false, [&](std::size_t i, double* out) { out[0] = L[i].solidAngle; }},
-           {"angular_radius", 1, false, [&](std::size_t i, double* out) { out[0] = L[i].angularRadius; }},
-           {"rect", 4, true,
+           {"solid_angle", 1, ResultColumn::Kind::Number,
+            [&](std::size_t i, double* out) { out[0] = L[i].solidAngle; }},
+           {"angular_radius", 1, ResultColumn::Kind::Number,
+            [&](std::size_t i, double* out) { out[0] = L[i].angularRadius; }},
+           {"rect", 4, ResultColumn::Kind::Integer,
             [&](std::size_t i, double* out) {
               out[0] = L[i].rect.x0, out[1] = L[i].rect.y0, out[2] = L[i].rect.x1, out[3] = L[i].rect.y1;
             }},
-           {"energy_share", 1, false, [&](std::size_t i, double* out) { out[0] = L[i].energyShare; }}});
+           {"energy_share", 1, ResultColumn::Kind::Number,
+            [&](std::size_t i, double* out) { out[0] = L[i].energyShare; }}});
   w.numbers("total_rgb", r.totalRgb);
   w.begin("timings_ms");
   w.number("load", report.loadMs);
@@ -88,6 +97,35 @@ void writeBake(ResultWriter& w, const BakeReport& report) {
   notes.insert(notes.end(), r.notes.begin(), r.notes.end());
   w.texts("notes", notes);
   writeEvaluation(w, report.bake);
+}
+
+void writeTradeoff(ResultWriter& w, const TradeoffReport& report) {
+  using Kind = ResultColumn::Kind;
+  const auto& rows = report.rows;
+  writeSource(w, report.path, report.probe);
+  w.text("effects", effectsToString(report.effects));
+  w.text("error", "relative RMS of luminance over the effect's sample points");
+  std::vector<ResultColumn> columns{
+      {"method", 1, Kind::Text, {}, [&](std::size_t i) { return toString(rows[i].method); }},
+      {"lights", 1, Kind::Integer, [&](std::size_t i, double* out) { out[0] = rows[i].lights; }},
+      {"made", 1, Kind::Integer, [&](std::size_t i, double* out) { out[0] = rows[i].made; }},
+      {"resolution",
+       1,
+       Kind::Text,
+       {},
+       [&](std::size_t i) { return rows[i].resolution ? rows[i].resolution->toString() : std::string("-"); }},
+      {"refit", 1, Kind::Boolean, [&](std::size_t i, double* out) { out[0] = rows[i].refit; }},
+      {"bake_ms", 1, Kind::Number, [&](std::size_t i, double* out) { out[0] = rows[i].bakeMs; }}};
+  if (report.effects & kDiffuse)
+    columns.push_back(
+        {"diffuse", 1, Kind::Number, [&](std::size_t i, double* out) { out[0] = rows[i].errors.diffuse; }});
+  if (report.effects & kShadow)
+    columns.push_back(
+        {"shadow", 1, Kind::Number, [&](std::size_t i, double* out) { out[0] = rows[i].errors.shadow; }});
+  if (report.effects & kGlossy)
+    columns.push_back(
+        {"glossy", 1, Kind::Number, [&](std::size_t i, double* out) { out[0] = rows[i].errors.glossy; }});
+  w.table("rows", rows.size(), columns);
 }
 
 }  // namespace probelights

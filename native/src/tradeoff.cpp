@@ -32,7 +32,8 @@ std::vector<TradeoffRow> tradeoff(const Probe& probe, const Evaluator& evaluator
         b.lights = n;
         b.resolution = res;
         BakeResult r = bake(probe, b);
-        const std::string resName = method == Method::SphericalHarmonics ? "-" : res.toString();
+        const auto resName =
+            method == Method::SphericalHarmonics ? std::nullopt : std::optional<WorkingResolution>(res);
         rows.push_back({method, n, static_cast<int>(r.lights.size()), resName, false, bakeMs(r),
                         evaluator.evaluate(r.lights)});
         if (o.refit && (evaluator.effects() & kDiffuse) && r.lights.size() <= kMaxRefitLights) {

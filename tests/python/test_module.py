@@ -159,13 +159,30 @@ def test_sh_sample_and_sh_bake(bundled_probe):
         pl.sh_sample(a, bands=4, epsilon=0.7)
 
 
+def test_the_module_and_the_cli_give_one_tradeoff_layout(bundled_probe, tmp_path):
+    import json
+    import subprocess
+    cli = os.path.join(os.environ.get("PROBELIGHTS_BUILD", "build"), "bin", "probelights")
+    out = tmp_path / "t.json"
+    subprocess.run([cli, "tradeoff", bundled_probe, "--counts", "4", "--methods", "variance,sh", "-o", str(out)],
+                   check=True, stdout=subprocess.DEVNULL)
+    document = json.loads(out.read_text())
+    a = np.zeros((64, 128, 3), np.float32) + 0.2
+    r = pl.tradeoff(a, counts=[4], methods=["variance", "sh"], evaluator_width=64)
+    assert key_paths(r) == key_paths(document)
+    # The SH method cuts on no working grid: "-" in both (the CLI measures full and 256 px grids, the module auto).
+    assert r["rows"]["resolution"] == ["auto", "auto", "-", "-"]
+    assert [row["resolution"] for row in document["rows"]] == ["full", "full", "256", "256", "-", "-"]
+
+
 def test_tradeoff_rows(bundled_probe):
     import numpy as np
     a = np.zeros((64, 128, 3), np.float32) + 0.2
     a[12, 40] = 3000.0
-    rows = pl.tradeoff(a, counts=[4, 16], methods=["variance"], evaluator_width=128)
-    assert [(r["lights"], r["refit"]) for r in rows] == [(4, False), (4, True), (16, False), (16, True)]
-    plain = {r["lights"]: r["diffuse"] for r in rows if not r["refit"]}
-    assert plain[16] < plain[4] and all(r["bake_ms"] > 0 and r["shadow"] >= 0 for r in rows)
+    rows = pl.tradeoff(a, counts=[4, 16], methods=["variance"], evaluator_width=128)["rows"]
+    assert list(zip(rows["lights"], rows["refit"])) == [(4, False), (4, True), (16, False), (16, True)]
+    plain = {n: e for n, e, refit in zip(rows["lights"], rows["diffuse"], rows["refit"]) if not refit}
+    assert plain[16] < plain[4] and (rows["bake_ms"] > 0).all() and (rows["shadow"] >= 0).all()
+    assert rows["method"] == ["variance"] * 4 and rows["resolution"] == ["auto"] * 4
     with pytest.raises(pl.Error, match="light counts"):
         pl.tradeoff(a, counts=[0])

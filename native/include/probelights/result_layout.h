@@ -1,6 +1,7 @@
 // One layout of a bake's result for every shell: the CLI's JSON (native/cli/json_output.cpp) and the Python
 // module's dict (native/python/module.cpp) are both written by writeBake() through a ResultWriter, so they
-// have the same keys, nested the same way (tests/python/test_module.py checks it). The layout (README, "JSON"):
+// have the same keys, nested the same way (tests/python/test_module.py checks it). The layout (README,
+// "JSON"):
 //   source {path, width, height, projection, negative_samples, non_finite_samples}
 //   method, sh {bands, epsilon, depth} | null, centroid, requested_lights, horizon_split,
 //   working_resolution {setting, cell_size},
@@ -9,6 +10,7 @@
 //   total_rgb (3), timings_ms {load, tables, partition, lights}, notes,
 //   evaluation {effects, refit, error, diffuse | shadow | glossy, energy_shift, auto_count {met, lights,
 //               tried: a table of lights, worst_error}} | null
+// and of the tradeoff grid (writeTradeoff, below).
 #pragma once
 
 #include <cstddef>
@@ -23,12 +25,14 @@
 
 namespace probelights {
 
-// A column of a table: `width` numbers per row (1: a scalar), filled row by row.
+// A column of a table: `width` numbers per row (1: a scalar), filled row by row; or one word per row (text).
 struct ResultColumn {
+  enum class Kind { Number, Integer, Boolean, Text };
   const char* key;
   int width = 1;
-  bool integer = false;
-  std::function<void(std::size_t row, double* out)> fill;
+  Kind kind = Kind::Number;
+  std::function<void(std::size_t row, double* out)> fill;  // Number, Integer, Boolean (0 or 1)
+  std::function<std::string(std::size_t row)> text = {};   // Text
 };
 
 // What a shell implements to receive the layout: keyed values inside nested objects.
@@ -56,5 +60,19 @@ struct BakeReport {
 };
 
 void writeBake(ResultWriter& writer, const BakeReport& report);
+
+// The "source" object alone (every document about a probe starts with it).
+void writeSource(ResultWriter& writer, const std::string& path, const Probe& probe);
+
+// The tradeoff grid (tradeoff.h): source, effects, error, and rows: a table of method, lights, made,
+// resolution ("-" for the SH method), refit, bake_ms and each evaluated effect's error.
+struct TradeoffReport {
+  std::string path;
+  const Probe& probe;
+  unsigned effects;
+  const std::vector<TradeoffRow>& rows;
+};
+
+void writeTradeoff(ResultWriter& writer, const TradeoffReport& report);
 
 }  // namespace probelights

@@ -3,6 +3,7 @@
 // fewest lights that meet a tolerance.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,9 +15,9 @@ namespace probelights {
 
 struct TradeoffRow {
   Method method;
-  int lights = 0;  // asked for
-  int made = 0;    // made
-  std::string resolution;
+  int lights = 0;                               // asked for
+  int made = 0;                                 // made
+  std::optional<WorkingResolution> resolution;  // none for the SH method (it cuts on no working grid)
   bool refit = false;
   double bakeMs = 0;  // tables + partition + lights (+ refit)
   EffectErrors errors;
