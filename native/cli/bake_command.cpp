@@ -1,6 +1,5 @@
 // probelights bake PROBE [options]: N lights that carry exactly the probe's energy (usage in main.cpp).
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 
@@ -10,6 +9,7 @@
 #include "probelights/bake.h"
 #include "probelights/evaluate.h"
 #include "probelights/preview.h"
+#include "probelights/stopwatch.h"
 #include "probelights/tradeoff.h"
 
 namespace probelights::cli {
@@ -98,9 +98,9 @@ void printSummary(const BakeArgs& a, const Probe& probe, const BakeOptions& opti
 
 int bakeCommand(const std::vector<std::string>& argv) {
   BakeArgs a = parseBakeArgs(argv);
-  auto t0 = std::chrono::steady_clock::now();
+  Stopwatch load;
   Probe probe = Probe::load(a.probe, a.probeOptions);
-  const double loadMs = msSince(t0);
+  const double loadMs = load.ms();
   const EvaluatedBake done = bakeEvaluated(probe, a.bake, a.accuracy);
   if (!a.output.empty()) {
     writeJson(bakeToJson({a.probe, probe, a.bake, done, loadMs}), a.output, 2);

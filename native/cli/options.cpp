@@ -97,8 +97,4 @@ void writeJson(const nlohmann::json& j, const std::string& output, int indent) {
   if (!(out << text)) throw Error("cannot write '" + output + "'");
 }
 
-double msSince(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
-}
-
 }  // namespace probelights::cli

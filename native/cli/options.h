@@ -1,7 +1,6 @@
 // What every CLI command shares: a declarative option table and its parser, number parsing, JSON output.
 #pragma once
 
-#include <chrono>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -46,7 +45,5 @@ std::vector<std::string> splitList(const std::string& text);              // "a,
 // JSON to a file, or standard output for "-"; indented by `indent`, by default compact on standard output and
 // by 1 in a file.
 void writeJson(const nlohmann::json& j, const std::string& output, int indent = -2);
-
-double msSince(std::chrono::steady_clock::time_point t);
 
 }  // namespace probelights::cli

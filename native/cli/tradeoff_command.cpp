@@ -1,5 +1,4 @@
 // probelights tradeoff PROBE: what accuracy costs in time, as a table, JSON and a plot (usage in main.cpp).
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 
@@ -7,6 +6,7 @@
 #include "json_output.h"
 #include "options.h"
 #include "probelights/evaluate.h"
+#include "probelights/stopwatch.h"
 #include "probelights/tradeoff.h"
 #include "tradeoff_plot.h"
 
@@ -36,10 +36,10 @@ int tradeoffCommand(const std::vector<std::string>& argv) {
   addProbeOptions(table, probeOptions);
   const std::string probePath = oneProbe(parseOptions(argv, table), "tradeoff");
 
-  auto t0 = std::chrono::steady_clock::now();
+  Stopwatch truth;
   Probe probe = Probe::load(probePath, probeOptions);
   Evaluator evaluator(probe, effects, EvaluatorOptions{2048, options.refit});
-  const double truthMs = msSince(t0);
+  const double truthMs = truth.ms();
   auto rows = tradeoff(probe, evaluator, options);
   std::printf("probe %s %dx%d; effects %s; ground truth %.0f ms; error = relative RMS of luminance\n\n",
               probePath.c_str(), probe.width(), probe.height(), effectsToString(effects).c_str(), truthMs);

@@ -7,8 +7,6 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include <chrono>
-
 #include "probelights/bake.h"
 #include "probelights/error.h"
 #include "probelights/evaluate.h"
@@ -16,6 +14,7 @@
 #include "probelights/result_layout.h"
 #include "probelights/sh_sampler.h"
 #include "probelights/spherical_harmonics.h"
+#include "probelights/stopwatch.h"
 #include "probelights/tradeoff.h"
 
 namespace py = pybind11;
@@ -165,9 +164,9 @@ py::dict bakeFile(const std::string& path, const std::string& projection, const 
   double loadMs = 0;
   {
     py::gil_scoped_release release;
-    const auto t0 = std::chrono::steady_clock::now();
+    Stopwatch load;
     probe.emplace(Probe::load(path, probeOptions));
-    loadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    loadMs = load.ms();
     result = bakeEvaluated(*probe, options, accuracy);
   }
   return toDict(path, *probe, options, result, loadMs);

@@ -1,6 +1,5 @@
 #include "probelights/bake.h"
 
-#include <chrono>
 #include <memory>
 
 #include "parallel.h"
@@ -8,6 +7,7 @@
 #include "probelights/median_cut.h"
 #include "probelights/names.h"
 #include "probelights/sh_lights.h"
+#include "probelights/stopwatch.h"
 #include "probelights/variance_minimization.h"
 
 namespace probelights {
@@ -26,11 +26,6 @@ std::string toString(Method method) { return nameOf(kMethods, method); }
 Method parseMethod(const std::string& name) { return parseName(kMethods, "method", name); }
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
-}
 
 Cut toPixels(const MomentTable& table, const Cut& cut) {
   Rect r = table.toPixels(cut.region);
@@ -58,13 +53,13 @@ BakeResult bake(const Probe& probe, const BakeOptions& options) {
     return result;
   }
 
-  auto t = Clock::now();
+  Stopwatch t;
   const MomentTable table(probe, options.resolution.cellSize(probe.width()));
-  result.timings.tablesMs = msSince(t);
+  result.timings.tablesMs = t.ms();
   result.cellSize = table.cellSize();
   result.totalRgb = table.integral();
 
-  t = Clock::now();
+  t.restart();
   std::unique_ptr<CutRule> rule;
   if (options.method == Method::MedianCut)
     rule = std::make_unique<MedianCutRule>(probe.projection());
@@ -75,13 +70,13 @@ BakeResult bake(const Probe& probe, const BakeOptions& options) {
     horizonRow = (probe.height() / 2 + table.cellSize() / 2) / table.cellSize();  // nearest cell border
   Partition partition = partitionSphere(table, *rule, options.lights, horizonRow);
   result.horizonSplit = partition.horizonCut;
-  result.timings.partitionMs = msSince(t);
+  result.timings.partitionMs = t.ms();
 
   for (const Rect& r : partition.regions) result.regions.push_back(table.toPixels(r));
   for (const Cut& c : partition.cuts) result.cuts.push_back(toPixels(table, c));
   result.notes = partition.notes;
 
-  t = Clock::now();
+  t.restart();
   if (table.hasCellSums()) {
     // A coarse grid kept each cell's exact sums: a region's sums are those of its cells (no second image
     // pass).
@@ -92,7 +87,7 @@ BakeResult bake(const Probe& probe, const BakeOptions& options) {
   } else {
     result.lights = lightsFromRegions(probe, result.regions, options.centroid);
   }
-  result.timings.lightsMs = msSince(t);
+  result.timings.lightsMs = t.ms();
   return result;
 }
 

@@ -1,21 +1,16 @@
 #include "probelights/sh_lights.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include "parallel.h"
 #include "probelights/error.h"
 #include "probelights/pixel_sums.h"
+#include "probelights/stopwatch.h"
 
 namespace probelights {
 
-namespace {
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
-}
-}  // namespace
+namespace {}  // namespace
 
 int stratumOf(std::array<double, 2> u, int count) {
   const int rows = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(count))));
@@ -36,12 +31,12 @@ int stratumOf(std::array<double, 2> u, int count) {
 ShLightResult shLights(const Probe& probe, const ShLightOptions& o) {
   if (o.lights < 1) throw Error("asked for " + std::to_string(o.lights) + " lights: ask for at least 1");
   ShLightResult result;
-  auto t = Clock::now();
+  Stopwatch t;
   const ShSampler sampler(o.bands, projectProbe(probe, o.bands).luminance(), o.epsilon, o.depth);
-  result.projectMs = msSince(t);
+  result.projectMs = t.ms();
 
   // Every pixel goes to the stratum its direction warps back to; blocks of rows in parallel, merged in order.
-  t = Clock::now();
+  t.restart();
   const int W = probe.width(), H = probe.height(), blocks = std::min(H, 64);
   struct Block {
     std::vector<PixelSums> sums;
@@ -78,13 +73,13 @@ ShLightResult shLights(const Probe& probe, const ShLightOptions& o) {
       });
   std::vector<PixelSums>& sums = merged.sums;
   std::vector<Rect>& bounds = merged.bounds;
-  result.assignMs = msSince(t);
+  result.assignMs = t.ms();
 
-  t = Clock::now();
+  t.restart();
   for (Rect& r : bounds)
     if (r.empty()) r = {0, 0, 0, 0};
   result.lights = lightsFromSums(probe, bounds, sums);
-  result.lightsMs = msSince(t);
+  result.lightsMs = t.ms();
   if (static_cast<int>(result.lights.size()) < o.lights)
     result.notes.push_back("made " + std::to_string(result.lights.size()) + " lights, not " +
                            std::to_string(o.lights) + ": " + std::to_string(o.lights - result.lights.size()) +

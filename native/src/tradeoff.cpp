@@ -1,20 +1,16 @@
 #include "probelights/tradeoff.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 
 #include "probelights/error.h"
+#include "probelights/stopwatch.h"
 
 namespace probelights {
 
 namespace {
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
-}
 double bakeMs(const BakeResult& r) { return r.timings.tablesMs + r.timings.partitionMs + r.timings.lightsMs; }
 }  // namespace
 
@@ -37,9 +33,9 @@ std::vector<TradeoffRow> tradeoff(const Probe& probe, const Evaluator& evaluator
         rows.push_back({method, n, static_cast<int>(r.lights.size()), resName, false, bakeMs(r),
                         evaluator.evaluate(r.lights)});
         if (o.refit && (evaluator.effects() & kDiffuse) && r.lights.size() <= kMaxRefitLights) {
-          auto t = Clock::now();
+          Stopwatch t;
           auto refit = refitIrradiance(evaluator, r.lights, nullptr, /*moveDirections=*/true);
-          rows.push_back({method, n, static_cast<int>(refit.size()), resName, true, bakeMs(r) + msSince(t),
+          rows.push_back({method, n, static_cast<int>(refit.size()), resName, true, bakeMs(r) + t.ms(),
                           evaluator.evaluate(refit)});
         }
       }
