@@ -16,7 +16,7 @@ int tradeoffCommand(const std::vector<std::string>& argv) {
   std::string output, plot;
   ProbeOptions probeOptions;
   TradeoffOptions options;
-  unsigned effects = kDiffuse | kShadow;
+  Effects effects = kDiffuse | kShadow;
   std::vector<Option> table{
       {{"--effects"}, [&](const std::string& v) { effects = parseEffects(v); }},
       {{"--counts"},

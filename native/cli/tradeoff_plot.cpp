@@ -29,7 +29,7 @@ std::string labelFont() {
 
 }  // namespace
 
-void writeTradeoffPlot(const std::vector<TradeoffRow>& rows, unsigned effects, const std::string& title,
+void writeTradeoffPlot(const std::vector<TradeoffRow>& rows, Effects effects, const std::string& title,
                        const std::string& path) {
   const int W = 960, H = 640, left = 90, right = 250, top = 50, bottom = 70;
   const std::string font = labelFont();

@@ -10,7 +10,7 @@ namespace probelights::cli {
 
 // Writes error (the worst of the evaluated effects, %) against bake time (ms), log axes, one curve per method
 // (refit curves lighter), as a PNG.
-void writeTradeoffPlot(const std::vector<TradeoffRow>& rows, unsigned effects, const std::string& title,
+void writeTradeoffPlot(const std::vector<TradeoffRow>& rows, Effects effects, const std::string& title,
                        const std::string& path);
 
 }  // namespace probelights::cli

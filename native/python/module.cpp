@@ -186,7 +186,7 @@ py::dict tradeoffRows(Pixels pixels, const std::string& projection, const std::s
   for (const auto& m : methods) options.methods.push_back(parseMethod(m));
   options.resolutions = {WorkingResolution{}};  // auto
   options.refit = refit;
-  const unsigned e = parseEffects(effects);
+  const Effects e = parseEffects(effects);
   std::vector<TradeoffRow> rows;
   std::optional<Probe> probe;
   {

@@ -27,7 +27,7 @@ Method parseMethod(const std::string& name) { return parseName(kMethods, "method
 
 namespace {
 
-Cut toPixels(const MomentTable& table, const Cut& cut) {
+PixelCut toPixels(const MomentTable& table, const Cut& cut) {
   Rect r = table.toPixels(cut.region);
   int position = std::min(cut.position * table.cellSize(), cut.axis == Axis::X ? r.x1 : r.y1);
   return {r, cut.axis, position};

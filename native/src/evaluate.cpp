@@ -10,8 +10,8 @@
 
 namespace probelights {
 
-unsigned parseEffects(const std::string& list) {
-  unsigned effects = 0;
+Effects parseEffects(const std::string& list) {
+  Effects effects;
   std::stringstream ss(list);
   std::string item;
   while (std::getline(ss, item, ',')) {
@@ -24,11 +24,11 @@ unsigned parseEffects(const std::string& list) {
     else
       throw Error("unknown effect '" + item + "': use diffuse, shadow and glossy, separated by commas");
   }
-  if (!effects) throw Error("no effects given: use diffuse, shadow and/or glossy");
+  if (effects.empty()) throw Error("no effects given: use diffuse, shadow and/or glossy");
   return effects;
 }
 
-std::string effectsToString(unsigned e) {
+std::string effectsToString(Effects e) {
   std::string s;
   for (auto [bit, name] :
        {std::pair{kDiffuse, "diffuse"}, std::pair{kShadow, "shadow"}, std::pair{kGlossy, "glossy"}}) {
@@ -39,7 +39,7 @@ std::string effectsToString(unsigned e) {
   return s;
 }
 
-double EffectErrors::worst(unsigned effects) const {
+double EffectErrors::worst(Effects effects) const {
   double w = 0;
   if (effects & kDiffuse) w = std::max(w, diffuse);
   if (effects & kShadow) w = std::max(w, shadow);
@@ -103,7 +103,7 @@ bool Evaluator::visible(const Vec3& p, const Vec3& d) {
   return !(b < 0 && b * b - cc > 0);
 }
 
-Evaluator::Evaluator(const Probe& probe, unsigned effects, EvaluatorOptions options) : effects_(effects) {
+Evaluator::Evaluator(const Probe& probe, Effects effects, EvaluatorOptions options) : effects_(effects) {
   // Probe samples: pixels, or cells of whole pixels for probes wider than options.maxWidth.
   const int maxWidth = std::max(1, options.maxWidth);
   const int cell = std::max(1, (probe.width() + maxWidth - 1) / maxWidth);

@@ -34,12 +34,19 @@ struct BakeTimings {
   double tablesMs = 0, partitionMs = 0, lightsMs = 0;
 };
 
+// A cut of the partition in image pixels (the partition's own Cut is in cells of the working grid).
+struct PixelCut {
+  Rect region;
+  Axis axis = Axis::X;
+  int position = 0;
+};
+
 struct BakeResult {
   std::vector<Light> lights;
   std::vector<Rect>
       regions;  // every region in pixels (they tile the image), or for "sh" each cell's bounding box
   bool regionsAreRects = true;
-  std::vector<Cut> cuts;  // in pixels, in the order they were made
+  std::vector<PixelCut> cuts;  // in the order they were made
   int cellSize = 1;
   bool horizonSplit = false;  // whether the first cut is at the horizon
   Rgb totalRgb{};             // the probe's integral of L over the sphere

@@ -22,14 +22,32 @@
 namespace probelights {
 
 enum Effect : unsigned { kDiffuse = 1, kShadow = 2, kGlossy = 4 };
-unsigned parseEffects(const std::string& list);  // "diffuse,shadow,glossy"; throws Error
-std::string effectsToString(unsigned effects);
+
+// A set of effects: `effects & kShadow` asks whether it holds one; kDiffuse | kShadow makes one.
+class Effects {
+ public:
+  constexpr Effects() = default;
+  constexpr Effects(Effect e) : bits_(e) {}  // NOLINT: an effect is a set of one
+  constexpr bool operator&(Effect e) const { return (bits_ & e) != 0; }
+  constexpr Effects operator|(Effects o) const { return Effects(bits_ | o.bits_); }
+  constexpr Effects& operator|=(Effects o) { return bits_ |= o.bits_, *this; }
+  constexpr bool operator==(const Effects&) const = default;
+  constexpr bool empty() const { return bits_ == 0; }
+
+ private:
+  constexpr explicit Effects(unsigned bits) : bits_(bits) {}
+  unsigned bits_ = 0;
+};
+constexpr Effects operator|(Effect a, Effect b) { return Effects(a) | Effects(b); }
+
+Effects parseEffects(const std::string& list);  // "diffuse,shadow,glossy"; throws Error
+std::string effectsToString(Effects effects);
 
 struct EffectErrors {
   double diffuse = std::numeric_limits<double>::quiet_NaN();
   double shadow = std::numeric_limits<double>::quiet_NaN();
   double glossy = std::numeric_limits<double>::quiet_NaN();
-  double worst(unsigned effects) const;
+  double worst(Effects effects) const;
 };
 
 struct EvaluatorOptions {
@@ -40,9 +58,9 @@ struct EvaluatorOptions {
 
 class Evaluator {
  public:
-  Evaluator(const Probe& probe, unsigned effects, EvaluatorOptions options = {});
+  Evaluator(const Probe& probe, Effects effects, EvaluatorOptions options = {});
 
-  unsigned effects() const { return effects_; }
+  Effects effects() const { return effects_; }
   EffectErrors evaluate(const std::vector<Light>& lights) const;
 
   // The sample points and the truth there (exposed for tests and the irradiance refit).
@@ -65,7 +83,7 @@ class Evaluator {
   static constexpr int kGlossyExponents[2] = {8, 64};
 
  private:
-  unsigned effects_;
+  Effects effects_;
   std::vector<Vec3> directions_;  // probe samples: unit directions
   std::vector<Rgb> radiance_;     // and their L dOmega
   std::vector<Vec3> normals_, points_, fitNormals_;

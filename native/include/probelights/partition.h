@@ -23,7 +23,7 @@ namespace probelights {
 enum class Axis { X, Y };
 
 // A cut of a region of cells into [start, position) and [position, end) along an axis.
-struct Cut {
+struct Cut {  // in cells of the working grid (BakeResult reports them in pixels: PixelCut)
   Rect region;
   Axis axis = Axis::X;
   int position = 0;

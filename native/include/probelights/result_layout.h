@@ -69,7 +69,7 @@ void writeSource(ResultWriter& writer, const std::string& path, const Probe& pro
 struct TradeoffReport {
   std::string path;
   const Probe& probe;
-  unsigned effects;
+  Effects effects;
   const std::vector<TradeoffRow>& rows;
 };
 

@@ -54,7 +54,7 @@ AutoCountResult autoCount(const Probe& probe, const Evaluator& evaluator, BakeOp
 // (autoCount), `refit` refits the lights' colours, and any of them (or `evaluate`) measures the errors on
 // `effects`.
 struct AccuracyOptions {
-  unsigned effects = kDiffuse;
+  Effects effects = kDiffuse;
   bool evaluate = false, refit = false;
   double maxError = 0;
   int evaluatorWidth = 2048;    // EvaluatorOptions::maxWidth (the add-on's quick estimate uses 512)
@@ -64,7 +64,7 @@ struct AccuracyOptions {
 struct EvaluatedBake {
   BakeResult bake;
   bool evaluated = false, autoCount = false, met = false, refit = false;
-  unsigned effects = 0;
+  Effects effects;
   EffectErrors errors;
   double energyShift = 0;  // of the refit
   int count = 0;           // the light count asked for, or chosen when autoCount (bake.lights may hold fewer)
