@@ -6,11 +6,11 @@
 #include "commands.h"
 #include "json_output.h"
 #include "options.h"
+#include "probelights/accuracy.h"
 #include "probelights/bake.h"
 #include "probelights/evaluate.h"
 #include "probelights/preview.h"
 #include "probelights/stopwatch.h"
-#include "probelights/tradeoff.h"
 
 namespace probelights::cli {
 

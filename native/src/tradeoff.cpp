@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <limits>
 
 #include "probelights/error.h"
 #include "probelights/stopwatch.h"
@@ -41,102 +39,6 @@ std::vector<TradeoffRow> tradeoff(const Probe& probe, const Evaluator& evaluator
       }
     }
   return rows;
-}
-
-AutoCountResult autoCount(const Probe& probe, const Evaluator& evaluator, BakeOptions options,
-                          double tolerance, bool refit, int maxLights, bool moveDirections) {
-  if (!(tolerance > 0)) throw Error("the error tolerance must be positive");
-  AutoCountResult best;
-  auto attempt = [&](int n) {
-    options.lights = n;
-    BakeResult r = bake(probe, options);
-    if (refit && r.lights.size() <= kMaxRefitLights)
-      r.lights = refitIrradiance(evaluator, r.lights, nullptr, moveDirections);
-    EffectErrors e = evaluator.evaluate(r.lights);
-    best.tried.push_back({n, e.worst(evaluator.effects())});
-    return std::pair{std::move(r), e};
-  };
-  // Doubling until the tolerance is met, then bisection between the last miss and the first hit. The error is
-  // not monotonic in the count (shadows of many small lights can be worse than of a few), so a miss keeps the
-  // count with the lowest error seen (fewest lights on a tie), and the doubling stops once two doublings past
-  // that count did not improve on it: a miss never costs more lights than a count that did better.
-  int lo = 0, hi = 0;
-  double bestError = std::numeric_limits<double>::infinity();
-  for (int n = 1; n <= maxLights; n *= 2) {
-    auto [r, e] = attempt(n);
-    const double worst = e.worst(evaluator.effects());
-    const bool fewerLit =
-        static_cast<int>(r.lights.size()) < n;  // more lights than lit pixels: more cannot help
-    if (worst <= tolerance) {
-      hi = n;
-      best.bake = std::move(r), best.errors = e, best.lights = n, best.met = true;
-      break;
-    }
-    lo = n;
-    if (worst < bestError) {
-      bestError = worst;
-      best.bake = std::move(r), best.errors = e, best.lights = n;
-    }
-    if (fewerLit || n >= 4 * best.lights) break;
-  }
-  if (!best.met) return best;
-  while (hi - lo > 1) {
-    int mid = lo + (hi - lo) / 2;
-    auto [r, e] = attempt(mid);
-    if (e.worst(evaluator.effects()) <= tolerance) {
-      hi = mid;
-      best.bake = std::move(r), best.errors = e, best.lights = mid;
-    } else {
-      lo = mid;
-    }
-  }
-  return best;
-}
-
-EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOptions a) {
-  if (!(a.maxError >= 0 && a.maxError < 1)) {
-    char got[32];
-    std::snprintf(got, sizeof got, "%g", a.maxError);
-    throw Error(std::string("the error tolerance is a fraction in (0, 1), e.g. 0.01 for 1 %; got ") + got);
-  }
-  EvaluatedBake out;
-  const bool evaluating = a.evaluate || a.refit || a.maxError > 0;
-  if (a.refit) a.effects |= kDiffuse;
-  if (!evaluating) {
-    out.bake = bake(probe, options);
-    out.count = options.lights;
-    return out;
-  }
-  const Evaluator evaluator(probe, a.effects, EvaluatorOptions{a.evaluatorWidth, a.refit});
-  if (a.maxError > 0) {
-    AutoCountResult chosen =
-        autoCount(probe, evaluator, options, a.maxError, a.refit, 1024, a.moveDirections);
-    out.bake = std::move(chosen.bake);
-    out.autoCount = true, out.met = chosen.met, out.tried = std::move(chosen.tried),
-    out.count = chosen.lights;
-    char line[200];
-    if (chosen.met)
-      std::snprintf(line, sizeof line, "auto count: %d lights, worst error %.2f%% (asked at most %.2f%%)",
-                    chosen.lights, 100 * chosen.errors.worst(a.effects), 100 * a.maxError);
-    else
-      std::snprintf(line, sizeof line,
-                    "no count met the tolerance of %.2f%%: using %d lights, the lowest error found (%.2f%%)",
-                    100 * a.maxError, chosen.lights, 100 * chosen.errors.worst(a.effects));
-    out.bake.notes.push_back(line);
-  } else {
-    out.bake = bake(probe, options);
-    out.count = options.lights;
-    if (a.refit) {
-      if (out.bake.lights.size() > kMaxRefitLights)
-        throw Error("the refit takes at most " + std::to_string(kMaxRefitLights) + " lights");
-      out.bake.lights = refitIrradiance(evaluator, out.bake.lights, &out.energyShift, a.moveDirections);
-    }
-  }
-  out.evaluated = true;
-  out.refit = a.refit;
-  out.effects = a.effects;
-  out.errors = evaluator.evaluate(out.bake.lights);
-  return out;
 }
 
 }  // namespace probelights

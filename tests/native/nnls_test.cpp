@@ -6,7 +6,6 @@
 #include <cmath>
 
 #include "probelights/error.h"
-#include "probelights/tradeoff.h"
 #include "test_probes.h"
 
 namespace probelights {

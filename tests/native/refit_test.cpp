@@ -5,8 +5,8 @@
 
 #include <cmath>
 
+#include "probelights/accuracy.h"
 #include "probelights/error.h"
-#include "probelights/tradeoff.h"
 #include "test_probes.h"
 
 namespace probelights {

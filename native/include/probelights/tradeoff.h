@@ -1,15 +1,14 @@
 // What accuracy costs in time: bakes over a grid of knobs (methods x light counts x working resolutions x
-// with and without the irradiance refit), each evaluated on the effects asked for; and the auto count, the
-// fewest lights that meet a tolerance.
+// with and without the irradiance refit), each evaluated on the effects asked for.
 #pragma once
 
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "probelights/accuracy.h"
 #include "probelights/bake.h"
 #include "probelights/evaluate.h"
-#include "probelights/refit.h"
 
 namespace probelights {
 
@@ -33,44 +32,5 @@ struct TradeoffOptions {
 
 std::vector<TradeoffRow> tradeoff(const Probe& probe, const Evaluator& evaluator,
                                   const TradeoffOptions& options);
-
-struct AutoCountResult {
-  BakeResult bake;
-  EffectErrors errors;
-  int lights = 0;
-  bool met =
-      false;  // false: no count tried met the tolerance; then the one with the lowest error (fewest on a tie)
-  std::vector<std::pair<int, double>> tried;  // (lights, worst error)
-};
-
-// The smallest N (doubling, then bisecting) whose worst error over the evaluator's effects is <= tolerance,
-// up to maxLights; with refit, each candidate is refit first. When none meets it: the count with the lowest
-// error tried (the doubling stops two doublings past it without improvement), so a miss never costs more
-// lights than a count that did better.
-AutoCountResult autoCount(const Probe& probe, const Evaluator& evaluator, BakeOptions options,
-                          double tolerance, bool refit, int maxLights = 1024, bool moveDirections = false);
-
-// One bake with the accuracy options the CLI and the add-on offer: `maxError` > 0 picks the count
-// (autoCount), `refit` refits the lights' colours, and any of them (or `evaluate`) measures the errors on
-// `effects`.
-struct AccuracyOptions {
-  Effects effects = kDiffuse;
-  bool evaluate = false, refit = false;
-  double maxError = 0;
-  int evaluatorWidth = 2048;    // EvaluatorOptions::maxWidth (the add-on's quick estimate uses 512)
-  bool moveDirections = false;  // the refit also moves directions (refit.h)
-};
-
-struct EvaluatedBake {
-  BakeResult bake;
-  bool evaluated = false, autoCount = false, met = false, refit = false;
-  Effects effects;
-  EffectErrors errors;
-  double energyShift = 0;  // of the refit
-  int count = 0;           // the light count asked for, or chosen when autoCount (bake.lights may hold fewer)
-  std::vector<std::pair<int, double>> tried;  // autoCount: (count, worst error) of every count tried
-};
-
-EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOptions accuracy);
 
 }  // namespace probelights
