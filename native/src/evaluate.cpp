@@ -6,35 +6,32 @@
 
 #include "parallel.h"
 #include "probelights/error.h"
+#include "probelights/names.h"
 #include "probelights/pixel_sums.h"
 
 namespace probelights {
+
+namespace {
+constexpr NameTable<Effect, 4> kEffects{
+    {{kDiffuse, "diffuse"}, {kShadow, "shadow"}, {kShadow, "shadows"}, {kGlossy, "glossy"}}};
+}  // namespace
 
 Effects parseEffects(const std::string& list) {
   Effects effects;
   std::stringstream ss(list);
   std::string item;
-  while (std::getline(ss, item, ',')) {
-    if (item == "diffuse")
-      effects |= kDiffuse;
-    else if (item == "shadow" || item == "shadows")
-      effects |= kShadow;
-    else if (item == "glossy")
-      effects |= kGlossy;
-    else
-      throw Error("unknown effect '" + item + "': use diffuse, shadow and glossy, separated by commas");
-  }
-  if (effects.empty()) throw Error("no effects given: use diffuse, shadow and/or glossy");
+  while (std::getline(ss, item, ',')) effects |= parseName(kEffects, "effect", item);
+  if (effects.empty())
+    throw Error("no effects given: use diffuse, shadow and/or glossy, separated by commas");
   return effects;
 }
 
 std::string effectsToString(Effects e) {
   std::string s;
-  for (auto [bit, name] :
-       {std::pair{kDiffuse, "diffuse"}, std::pair{kShadow, "shadow"}, std::pair{kGlossy, "glossy"}}) {
+  for (Effect bit : {kDiffuse, kShadow, kGlossy}) {
     if (!(e & bit)) continue;
     if (!s.empty()) s.push_back(',');
-    s.append(name);
+    s.append(nameOf(kEffects, bit));
   }
   return s;
 }

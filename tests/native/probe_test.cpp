@@ -56,7 +56,7 @@ std::string expectError(const std::function<void()>& f) {
   return {};
 }
 
-TEST(RealProbes, EveryProbeBakesAndConservesEnergy) {
+TEST(Probe, RealProbesEveryProbeBakesAndConservesEnergy) {
   auto files = realProbes();
   if (files.empty()) GTEST_SKIP() << "no probes in ../shared/hdri or Blender's studiolights";
   for (const auto& f : files) {
@@ -75,7 +75,7 @@ TEST(RealProbes, EveryProbeBakesAndConservesEnergy) {
   }
 }
 
-TEST(RealProbes, NegativeSamplesOfLossyExrAreClampedAndCounted) {
+TEST(Probe, RealProbesNegativeSamplesOfLossyExrAreClampedAndCounted) {
   fs::path f = fs::path(PROBELIGHTS_SHARED_HDRI) / "pmndrs_esplanade_dwab.exr";
   if (!fs::exists(f)) GTEST_SKIP() << "skipped: ../shared not found (" << f << ")";
   Probe probe = Probe::load(f.string());
@@ -86,7 +86,7 @@ TEST(RealProbes, NegativeSamplesOfLossyExrAreClampedAndCounted) {
       for (double c : probe.radiance(x, y)) ASSERT_GE(c, 0.0);
 }
 
-TEST(Buffers, ViewIsNotCopied) {
+TEST(Probe, BufferViewIsNotCopied) {
   std::vector<float> pixels(16 * 8 * 3, 1.0f);
   Probe probe(ImageView{pixels.data(), 16, 8, 3}, ProjectionKind::LatLong);
   EXPECT_EQ(probe.view().pixels, pixels.data());
@@ -94,7 +94,7 @@ TEST(Buffers, ViewIsNotCopied) {
   EXPECT_EQ(probe.radiance(0, 0)[0], 7.0);
 }
 
-TEST(Buffers, GreyAndAlphaChannels) {
+TEST(Probe, BufferGreyAndAlphaChannels) {
   const int W = 32, H = 16;
   std::vector<float> grey(W * H), greyAlpha(W * H * 2), rgb(W * H * 3), rgba(W * H * 4);
   for (int i = 0; i < W * H; ++i) {
@@ -116,7 +116,7 @@ TEST(Buffers, GreyAndAlphaChannels) {
   }
 }
 
-TEST(Buffers, StridedView) {
+TEST(Probe, BufferStridedView) {
   // Every other pixel of every other row of a larger buffer, e.g. a crop of the caller's image.
   const int W = 16, H = 8;
   std::vector<float> big(4 * W * H * 3, 0.0f), packed(W * H * 3);
@@ -132,7 +132,7 @@ TEST(Buffers, StridedView) {
   EXPECT_EQ(strided.integral(), reference.integral());
 }
 
-TEST(BadPixels, NonFiniteSamplesAreAnErrorNamingHowManyAndWhere) {
+TEST(Probe, NonFiniteSamplesAreAnErrorNamingHowManyAndWhere) {
   const int W = 16, H = 8;
   std::vector<float> pixels(W * H * 3, 1.0f);
   pixels[(3 * W + 5) * 3 + 1] = std::numeric_limits<float>::quiet_NaN();
@@ -151,7 +151,7 @@ TEST(BadPixels, NonFiniteSamplesAreAnErrorNamingHowManyAndWhere) {
   EXPECT_TRUE(std::isfinite(r.totalRgb[0]) && std::isfinite(r.totalRgb[1]));
 }
 
-TEST(BadInputs, OneLineErrors) {
+TEST(Probe, BadInputsOneLineErrors) {
   fs::path dir = tempDir();
   EXPECT_NE(expectError([&] { Probe::load((dir / "missing.exr").string()); }).find("no such file"),
             std::string::npos);
@@ -174,7 +174,7 @@ void writeImage(const fs::path& path, int W, int H, int channels, const std::vec
   out->close();
 }
 
-TEST(Files, FormatsOpenImageIOReadsGiveTheSameLights) {
+TEST(Probe, FilesFormatsOpenImageIOReadsGiveTheSameLights) {
   const int W = 64, H = 32;
   std::vector<float> rgb(W * H * 3);
   for (int i = 0; i < W * H; ++i)
@@ -200,7 +200,7 @@ TEST(Files, FormatsOpenImageIOReadsGiveTheSameLights) {
   fs::remove_all(dir);
 }
 
-TEST(Files, AutoProjectionPicksLatLongFor2To1AndAsksOtherwise) {
+TEST(Probe, FilesAutoProjectionPicksLatLongFor2To1AndAsksOtherwise) {
   const int S = 32;
   std::vector<float> px(S * S * 3, 1.0f);
   fs::path dir = tempDir();
@@ -226,7 +226,7 @@ namespace {
 
 // The bundled sunny probe resampled into a mirror ball and an angular map (nearest lat-long pixel for each
 // direction): the same sun must come out in the same direction, and the same energy, up to the resampling.
-TEST(RealProbes, MirrorBallAndAngularResamplingsAgreeWithLatLong) {
+TEST(Probe, RealProbesMirrorBallAndAngularResamplingsAgreeWithLatLong) {
   Probe latlong = Probe::load(PROBELIGHTS_BUNDLED_PROBE);
   BakeOptions o;
   o.lights = 16;

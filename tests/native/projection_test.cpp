@@ -30,7 +30,7 @@ Vec3 brightPixelLight(int width, int height, int px, int py) {
   return r.lights.at(0).direction;
 }
 
-TEST(LatLong, BrightPixelLightFollowsTheBlenderConvention) {
+TEST(Projection, LatLongBrightPixelLightFollowsTheBlenderConvention) {
   const int W = 64, H = 32;
   // Column 16 of 64 is a quarter of the way from the left edge: phi ~ +pi/2, so the light is towards +Y.
   Vec3 d = brightPixelLight(W, H, 16, 15);
@@ -51,7 +51,7 @@ TEST(LatLong, BrightPixelLightFollowsTheBlenderConvention) {
     }
 }
 
-TEST(LatLong, RightHandedZUp) {
+TEST(Projection, LatLongRightHandedZUp) {
   Projection p(ProjectionKind::LatLong, 256, 128);
   // Walking right in the image turns clockwise seen from above (phi decreases): +X then -Y.
   Vec3 a = *p.direction(0.5, 0.5), b = *p.direction(0.75, 0.5);
@@ -59,7 +59,7 @@ TEST(LatLong, RightHandedZUp) {
   EXPECT_NEAR(b.y, -1, 1e-12);
 }
 
-TEST(Projections, SolidAnglesSumToTheSphere) {
+TEST(Projection, SolidAnglesSumToTheSphere) {
   struct Case {
     ProjectionKind kind;
     int w, h;
@@ -78,7 +78,7 @@ TEST(Projections, SolidAnglesSumToTheSphere) {
   }
 }
 
-TEST(Projections, DirectionRoundTrip) {
+TEST(Projection, DirectionRoundTrip) {
   std::mt19937 rng(7);
   std::normal_distribution<double> n;
   for (auto kind : {ProjectionKind::LatLong, ProjectionKind::MirrorBall, ProjectionKind::Angular}) {
@@ -95,7 +95,7 @@ TEST(Projections, DirectionRoundTrip) {
   }
 }
 
-TEST(MirrorBall, MatchesBlendersOrientation) {
+TEST(Projection, MirrorBallMatchesBlendersOrientation) {
   Projection p(ProjectionKind::MirrorBall, 256, 256);
   auto centre = *p.direction(0.5, 0.5);
   EXPECT_NEAR(centre.y, -1, 1e-12);  // the ball's centre reflects the camera, which looks along +Y
@@ -113,7 +113,7 @@ TEST(MirrorBall, MatchesBlendersOrientation) {
   EXPECT_FALSE(p.direction(0.95, 0.95));  // a corner outside the ball
 }
 
-TEST(Angular, AngleGrowsLinearlyWithRadius) {
+TEST(Projection, AngularAngleGrowsLinearlyWithRadius) {
   Projection p(ProjectionKind::Angular, 200, 200);
   EXPECT_NEAR(p.direction(0.5, 0.5)->y, -1, 1e-12);
   // Radius 0.5 (half-way to the rim) is 90 degrees from the centre: straight right is +X.
@@ -123,7 +123,7 @@ TEST(Angular, AngleGrowsLinearlyWithRadius) {
   EXPECT_NEAR(up.z, 1, 1e-12);
 }
 
-TEST(Angular, PixelSolidAngleMatchesFineQuadrature) {
+TEST(Projection, AngularPixelSolidAngleMatchesFineQuadrature) {
   Projection p(ProjectionKind::Angular, 64, 64);
   for (auto [x, y] :
        {std::pair{32, 32}, std::pair{10, 30}, std::pair{3, 25}, std::pair{0, 31}, std::pair{60, 60}}) {
@@ -139,7 +139,7 @@ TEST(Angular, PixelSolidAngleMatchesFineQuadrature) {
   }
 }
 
-TEST(UnitDisc, RectangleAreaInClosedForm) {
+TEST(RectangleAreaInUnitDisc, RectangleAreaInClosedForm) {
   EXPECT_NEAR(rectangleAreaInUnitDisc(-1, 1, -1, 1), kPi, 1e-14);
   EXPECT_NEAR(rectangleAreaInUnitDisc(0, 1, 0, 1), kPi / 4, 1e-14);
   EXPECT_NEAR(rectangleAreaInUnitDisc(-0.1, 0.2, 0.3, 0.5), 0.3 * 0.2, 1e-14);

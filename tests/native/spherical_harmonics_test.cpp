@@ -34,7 +34,7 @@ void gaussLegendre(int n, std::vector<double>& x, std::vector<double>& w) {
   }
 }
 
-TEST(SphericalHarmonics, SloanConventionForTheFirstBands) {
+TEST(ShBasis, SloanConventionForTheFirstBands) {
   std::vector<double> y(9);
   Vec3 d{0.36, -0.48, 0.8};
   shBasis(3, d, y);
@@ -47,7 +47,7 @@ TEST(SphericalHarmonics, SloanConventionForTheFirstBands) {
   EXPECT_NEAR(y[6], 0.25 * std::sqrt(5 / kPi) * (3 * d.z * d.z - 1), 1e-14);
 }
 
-TEST(SphericalHarmonics, OrthonormalTo20BandsByQuadrature) {
+TEST(ShBasis, OrthonormalTo20BandsByQuadrature) {
   const int bands = 20, n = shCount(bands), nz = 24, nphi = 48;  // exact for products of degree <= 40
   std::vector<double> zs, ws, y(n);
   gaussLegendre(nz, zs, ws);
@@ -66,7 +66,7 @@ TEST(SphericalHarmonics, OrthonormalTo20BandsByQuadrature) {
   EXPECT_LT(worst, 1e-12);
 }
 
-TEST(SphericalHarmonics, StableAtHighBands) {
+TEST(ShBasis, StableAtHighBands) {
   // Band 200 values stay finite and of the size the normalization predicts (|N_l^m| <= sqrt((2l+1)/4pi)).
   std::vector<double> y(shCount(200));
   shBasis(200, {0.6, 0.0, 0.8}, y);
@@ -76,7 +76,7 @@ TEST(SphericalHarmonics, StableAtHighBands) {
   }
 }
 
-TEST(Projection, WhiteFurnace) {
+TEST(ProjectProbe, WhiteFurnace) {
   const double L = 1.5;  // exact in float, as the probe stores it
   auto t = testing::uniformProbe(256, 128, ProjectionKind::LatLong, {L, L, L});
   ShCoefficients sh = projectProbe(t.probe, 8);
@@ -89,7 +89,7 @@ TEST(Projection, WhiteFurnace) {
     EXPECT_NEAR(e.evaluate(n)[0], kPi * L, 1e-9);
 }
 
-TEST(Projection, RecoversABandLimitedFunction) {
+TEST(ProjectProbe, RecoversABandLimitedFunction) {
   const int bands = 5;
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> coef(-0.1, 0.1);
@@ -106,7 +106,7 @@ TEST(Projection, RecoversABandLimitedFunction) {
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(got.c[i][k], truth.c[i][k], 2e-5) << i;
 }
 
-TEST(Projection, MirrorBallAgreesWithLatLong) {
+TEST(ProjectProbe, MirrorBallAgreesWithLatLong) {
   // The same smooth sky in both projections gives the same low-band coefficients.
   auto sky = [](const Vec3& d) { return Rgb{1 + d.z, 1 + 0.5 * d.x, 1 - 0.3 * d.y}; };
   const Projection llProjection(ProjectionKind::LatLong, 512, 256);
@@ -123,7 +123,7 @@ TEST(Projection, MirrorBallAgreesWithLatLong) {
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(a.c[i][k], b.c[i][k], 0.02) << i;
 }
 
-TEST(RectIntegrals, AgreeWithBruteForce) {
+TEST(ShRectIntegrator, AgreeWithBruteForce) {
   const int bands = 7;
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> coef(-1, 1);
@@ -151,7 +151,7 @@ TEST(RectIntegrals, AgreeWithBruteForce) {
   EXPECT_NEAR(integrator.integral(-1, 1, -kPi, kPi), c[0] * std::sqrt(4 * kPi), 1e-12);
 }
 
-TEST(Irradiance, MatchesADirectSumOnAProbe) {
+TEST(IrradianceCoefficients, MatchesADirectSumOnAProbe) {
   // A smooth sky: 9 bands of irradiance are within 0.5 % of the exact sum of L max(0, n.d) dOmega.
   auto sky = [](const Vec3& d) { return Rgb{0.2 + std::max(0.0, d.z), 0.3, 0.1 + 0.05 * (d.x + 1)}; };
   Projection pr(ProjectionKind::LatLong, 512, 256);
@@ -173,7 +173,7 @@ TEST(Irradiance, MatchesADirectSumOnAProbe) {
   EXPECT_EQ(irradianceFactor(3), 0.0);
 }
 
-TEST(Windows, DampHighBandsOnly) {
+TEST(ApplyWindow, DampHighBandsOnly) {
   ShCoefficients sh{4, std::vector<Rgb>(16, Rgb{1, 1, 1})};
   applyWindow(sh, ShWindow::Lanczos);
   EXPECT_EQ(sh.c[0][0], 1.0);
