@@ -36,11 +36,7 @@ PixelCut toPixels(const MomentTable& table, const Cut& cut) {
 }  // namespace
 
 BakeResult bake(const Probe& probe, const BakeOptions& options) {
-  if (options.lights < 1)
-    throw Error("asked for " + std::to_string(options.lights) + " lights: ask for at least 1");
-  if (options.lights > kMaxLights)
-    throw Error("asked for " + std::to_string(options.lights) + " lights: at most " +
-                std::to_string(kMaxLights));
+  checkLightCount(options.lights);
   BakeResult result;
   if (options.method == Method::SphericalHarmonics) {
     ShLightResult sh = shLights(probe, {options.lights, options.shBands, options.shEpsilon, options.shDepth});

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "parallel.h"
+#include "probelights/error.h"
 #include "probelights/names.h"
 
 namespace probelights {
@@ -12,6 +13,12 @@ namespace {
 constexpr NameTable<CentroidWeight, 2> kCentroids{
     {{CentroidWeight::Energy, "energy"}, {CentroidWeight::Energy2, "energy2"}}};
 }  // namespace
+
+void checkLightCount(int lights) {
+  if (lights < 1) throw Error("asked for " + std::to_string(lights) + " lights: ask for at least 1");
+  if (lights > kMaxLights)
+    throw Error("asked for " + std::to_string(lights) + " lights: at most " + std::to_string(kMaxLights));
+}
 
 std::string toString(CentroidWeight weight) { return nameOf(kCentroids, weight); }
 CentroidWeight parseCentroid(const std::string& name) { return parseName(kCentroids, "centroid", name); }

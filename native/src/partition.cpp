@@ -5,6 +5,7 @@
 #include <tuple>
 
 #include "probelights/error.h"
+#include "probelights/lights.h"
 
 namespace probelights {
 
@@ -26,7 +27,7 @@ std::optional<std::array<int, 2>> litCutRange(const MomentTable& table, const Re
 }
 
 Partition partitionSphere(const MomentTable& table, const CutRule& rule, int count, int horizonRow) {
-  if (count < 1) throw Error("asked for " + std::to_string(count) + " lights: ask for at least 1");
+  checkLightCount(count);
   Partition p;
   p.regions.push_back(table.wholeGrid());
   if (table.litCells() == 0) {

@@ -29,7 +29,7 @@ int stratumOf(std::array<double, 2> u, int count) {
 }
 
 ShLightResult shLights(const Probe& probe, const ShLightOptions& o) {
-  if (o.lights < 1) throw Error("asked for " + std::to_string(o.lights) + " lights: ask for at least 1");
+  checkLightCount(o.lights);
   ShLightResult result;
   Stopwatch t;
   const ShSampler sampler(o.bands, projectProbe(probe, o.bands).luminance(), o.epsilon, o.depth);

@@ -13,8 +13,7 @@ double bakeMs(const BakeResult& r) { return r.timings.tablesMs + r.timings.parti
 }  // namespace
 
 std::vector<TradeoffRow> tradeoff(const Probe& probe, const Evaluator& evaluator, const TradeoffOptions& o) {
-  for (int n : o.counts)
-    if (n < 1 || n > kMaxLights) throw Error("light counts must be 1 to " + std::to_string(kMaxLights));
+  for (int n : o.counts) checkLightCount(n);
   std::vector<TradeoffRow> rows;
   for (Method method : o.methods)
     for (const WorkingResolution& res : o.resolutions) {

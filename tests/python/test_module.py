@@ -184,5 +184,5 @@ def test_tradeoff_rows(bundled_probe):
     plain = {n: e for n, e, refit in zip(rows["lights"], rows["diffuse"], rows["refit"]) if not refit}
     assert plain[16] < plain[4] and (rows["bake_ms"] > 0).all() and (rows["shadow"] >= 0).all()
     assert rows["method"] == ["variance"] * 4 and rows["resolution"] == ["auto"] * 4
-    with pytest.raises(pl.Error, match="light counts"):
+    with pytest.raises(pl.Error, match="at least 1"):
         pl.tradeoff(a, counts=[0])

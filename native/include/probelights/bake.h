@@ -54,8 +54,6 @@ struct BakeResult {
   std::vector<std::string> notes;
 };
 
-inline constexpr int kMaxLights = 65536;
-
 // Throws Error for a bad request (lights < 1 or > kMaxLights).
 BakeResult bake(const Probe& probe, const BakeOptions& options);
 

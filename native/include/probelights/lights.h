@@ -14,6 +14,10 @@ namespace probelights {
 // light), energy2 = Y^2 dOmega (S.-Y. Yang, "Environment Lights", CSIE5098 homework 3, National Taiwan
 // University, 2015: "Centroid Formula 2", pulled towards the brightest pixels).
 enum class CentroidWeight { Energy, Energy2 };
+inline constexpr int kMaxLights = 65536;
+// The one check of a requested light count (1 to kMaxLights), shared by every entry point; throws Error.
+void checkLightCount(int lights);
+
 std::string toString(CentroidWeight weight);            // "energy", "energy2"
 CentroidWeight parseCentroid(const std::string& name);  // throws Error naming the choices
 
