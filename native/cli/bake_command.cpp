@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "bake_args.h"
 #include "commands.h"
 #include "json_output.h"
 #include "options.h"
@@ -15,14 +16,6 @@
 namespace probelights::cli {
 
 namespace {
-
-struct BakeArgs {
-  std::string probe, output, preview;
-  ProbeOptions probeOptions;
-  BakeOptions bake;
-  AccuracyOptions accuracy;
-  bool quiet = false;
-};
 
 BakeArgs parseBakeArgs(const std::vector<std::string>& argv) {
   BakeArgs a;
@@ -42,6 +35,8 @@ BakeArgs parseBakeArgs(const std::vector<std::string>& argv) {
        }},
       {{"-o", "--output"}, [&](const std::string& v) { a.output = v; }},
       {{"--preview"}, [&](const std::string& v) { a.preview = v; }},
+      {{"--out-dir"}, [&](const std::string& v) { a.outDir = v; }},
+      flag({"--previews"}, [&] { a.previews = true; }),
       {{"--max-error"}, [&](const std::string& v) { acc.maxError = parseTolerance("--max-error", v); }},
       {{"--effects"}, [&](const std::string& v) { acc.effects = parseEffects(v); }},
       flag({"-q", "--quiet"}, [&] { a.quiet = true; }),
@@ -50,7 +45,17 @@ BakeArgs parseBakeArgs(const std::vector<std::string>& argv) {
       flag({"--evaluate"}, [&] { acc.evaluate = true; }),
   };
   addProbeOptions(table, a.probeOptions);
-  a.probe = oneProbe(parseOptions(argv, table), "bake");
+  const std::vector<std::string> probes = parseOptions(argv, table);
+  if (a.outDir.empty()) {
+    if (a.previews)
+      throw UsageError("--previews goes with --out-dir (a library bake); one probe takes --preview FILE");
+    a.probe = oneProbe(probes, "bake");
+  } else {
+    if (!a.output.empty() || !a.preview.empty())
+      throw UsageError("with --out-dir each probe's JSON (and --previews) goes there: drop -o / --preview");
+    if (probes.empty()) throw UsageError("no probes given: probelights bake PROBE... --out-dir DIR");
+    a.probes = probes;
+  }
   return a;
 }
 
@@ -98,6 +103,7 @@ void printSummary(const BakeArgs& a, const Probe& probe, const BakeOptions& opti
 
 int bakeCommand(const std::vector<std::string>& argv) {
   BakeArgs a = parseBakeArgs(argv);
+  if (!a.outDir.empty()) return bakeLibrary(a);
   Stopwatch load;
   Probe probe = Probe::load(a.probe, a.probeOptions);
   const double loadMs = load.ms();

@@ -16,6 +16,7 @@ using namespace probelights::cli;
 
 const char* kUsage =
     R"(usage: probelights bake PROBE [options]      N lights that carry exactly the probe's energy
+       probelights bake PROBE... --out-dir DIR [options]   a whole library, one JSON per probe
        probelights sh PROBE --bands B [--irradiance] [--window none|hanning|lanczos] [-o sh.json]
        probelights sample PROBE --bands B --epsilon E --samples N [--depth K] [--seed S] [-o samples.json]
        probelights tradeoff PROBE [--effects diffuse,shadow,glossy] [--counts 1,2,4,...] [--methods ...]
@@ -39,6 +40,9 @@ options:
                                     (default off: the papers' algorithms exactly)
   --nonfinite error|zero            NaN/Inf pixels: refuse the probe (default) or read them as 0
   -o, --output FILE                 write the lights as JSON ('-' for standard output)
+  --out-dir DIR                     bake many probes (files, folders, quoted globs) into DIR: a JSON each and
+                                    summary.json; the next loads while one bakes; exit 3 if some failed
+  --previews                        with --out-dir: a preview PNG per probe too
   --preview FILE                    write a picture of the regions and lights (PNG)
   --refit                           re-solve the lights' colours (non-negative least squares) so their
                                     diffuse irradiance matches the probe's; reports the energy shift

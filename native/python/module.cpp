@@ -8,6 +8,9 @@
 #include <pybind11/stl.h>
 
 #include "probelights/bake.h"
+#if PROBELIGHTS_MODULE_IO
+#include "probelights/batch.h"
+#endif
 #include "probelights/error.h"
 #include "probelights/evaluate.h"
 #include "probelights/probe.h"
@@ -171,6 +174,46 @@ py::dict bakeFile(const std::string& path, const std::string& projection, const 
   }
   return toDict(path, *probe, options, result, loadMs);
 }
+
+// Many probes (files, directories, globs): a list with bake_file's dict per probe, or {"source": {"path"},
+// "error"} for one that failed (the others go on). The next probe loads while the current one bakes.
+py::list bakeFiles(const std::vector<std::string>& inputs, const std::string& projection,
+                   const std::string& method, int lights, const std::string& centroid,
+                   const std::string& resolution, bool horizon, int bands, double epsilon,
+                   const std::string& effects, bool evaluate, bool refit, bool moveDirections,
+                   double maxError, int evaluatorWidth, const std::string& nonfinite) {
+  ProbeOptions probeOptions;
+  probeOptions.projection = parseProjectionChoice(projection);
+  probeOptions.nonFinite = parseNonFinitePolicy(nonfinite);
+  const BakeOptions options = bakeOptions(method, lights, centroid, resolution, horizon, bands, epsilon);
+  const AccuracyOptions accuracy =
+      accuracyOptions(effects, evaluate, refit, maxError, evaluatorWidth, moveDirections);
+  py::list out;
+  {
+    py::gil_scoped_release release;
+    forEachProbe(expandProbePaths(inputs), probeOptions, [&](LoadedProbe& item) {
+      std::string error = item.error;
+      std::optional<EvaluatedBake> result;
+      if (item.probe) {
+        try {
+          result = bakeEvaluated(*item.probe, options, accuracy);
+        } catch (const std::exception& e) {
+          error = e.what();
+        }
+      }
+      py::gil_scoped_acquire acquire;
+      if (result) {
+        out.append(toDict(item.path, *item.probe, options, *result, item.loadMs));
+      } else {
+        py::dict failed;
+        failed["source"] = py::dict(py::arg("path") = item.path);
+        failed["error"] = error;
+        out.append(failed);
+      }
+    });
+  }
+  return out;
+}
 #endif
 
 // The tradeoff grid (tradeoff.h) in the layout of the CLI's tradeoff JSON (result_layout.h).
@@ -281,6 +324,14 @@ PYBIND11_MODULE(_probelights, m) {
         py::arg("evaluator_width") = 2048, py::arg("nonfinite") = "error",
         "Read a probe with OpenImageIO and bake it: the same options and dict as bake(), with source.path "
         "and timings_ms.load set.");
+  m.def("bake_files", &bakeFiles, py::arg("paths"), py::kw_only(), py::arg("projection") = "auto",
+        py::arg("method") = "variance", py::arg("lights") = 16, py::arg("centroid") = "energy",
+        py::arg("resolution") = "auto", py::arg("horizon") = false, py::arg("bands") = 8,
+        py::arg("epsilon") = 0.01, py::arg("effects") = "diffuse", py::arg("evaluate") = false,
+        py::arg("refit") = false, py::arg("move_directions") = false, py::arg("max_error") = 0.0,
+        py::arg("evaluator_width") = 2048, py::arg("nonfinite") = "error",
+        "Bake many probes (files, directories, globs) in order, the next loading while one bakes: a list of "
+        "bake_file's dicts, with {'source': {'path'}, 'error'} for a probe that failed.");
 #endif
   m.def(
       "sh_project", &shProject, py::arg("pixels"), py::kw_only(), py::arg("bands"),

@@ -88,5 +88,31 @@ check "bake --refit-directions" "'$bin' bake '$probe' --lights 16 --refit-direct
 check "bake --max-error picks a count" "'$bin' bake '$probe' --max-error 2% -o '$tmp/auto.json' -q && python3 -c \"import json; d=json.load(open('$tmp/auto.json')); a=d['evaluation']; assert a['auto_count']['met'] and a['diffuse'] <= 0.02 and len(d['lights']) == a['auto_count']['lights']\""
 check "tradeoff table, JSON and plot" "'$bin' tradeoff '$probe' --counts 4,16 --methods variance,sh -o '$tmp/t.json' --plot '$tmp/t.png' >'$tmp/t.txt' && head -c 8 '$tmp/t.png' | od -An -c | grep -q 'P   N   G' && python3 -c \"import json; d=json.load(open('$tmp/t.json')); assert len(d['rows']) == 12, len(d['rows'])\""
 
+# A library in one command: a bad file among good ones is reported on one line and the rest are baked (exit
+# 3); each result equals the single-probe bake; an output folder that cannot be made is refused before any work.
+mkdir -p "$tmp/lib" "$tmp/lib2"
+cp "$probe" "$tmp/lib/a.hdr"
+cp "$tmp/square.pfm" "$tmp/lib/b.pfm"
+echo junk >"$tmp/lib/broken.hdr"
+cp "$probe" "$tmp/lib2/a.hdr"
+"$bin" bake "$tmp/lib" "$tmp/lib2" --projection latlong --lights 12 --out-dir "$tmp/library" -q 2>"$tmp/lib.err"
+code=$?
+check "library bake: exit 3 and one line for the bad probe" "[[ $code -eq 3 ]] && [[ \$(wc -l <'$tmp/lib.err') -eq 1 ]] && grep -q 'broken.hdr' '$tmp/lib.err'"
+"$bin" bake "$probe" --lights 12 -o "$tmp/single.json" -q
+check "library bake: results equal single bakes, summary, unique names" "python3 -c \"
+import json
+s = json.load(open('$tmp/library/summary.json'))
+assert s['probes'] == 4 and s['baked'] == 3 and s['failed'] == 1, s
+assert [r.get('output') for r in s['results']] == ['a.json', 'b.json', None, 'a_2.json'], s['results']
+one, lib = json.load(open('$tmp/single.json')), json.load(open('$tmp/library/a.json'))
+assert one['lights'] == lib['lights'] and one['total_rgb'] == lib['total_rgb']
+assert json.load(open('$tmp/library/a_2.json'))['lights'] == one['lights']
+\""
+check "library bake: nothing half-written" "! ls '$tmp/library' | grep -q part"
+touch "$tmp/a-file"
+expect_error "library bake into a folder that cannot be made" "cannot write to output directory" bake "$tmp/lib" --out-dir "$tmp/a-file/out"
+check "library bake: a refused folder leaves nothing" "[[ ! -e '$tmp/a-file/out' ]]"
+check "library bake: globs" "'$bin' bake '$tmp/lib/*.hdr' --out-dir '$tmp/out2' -q 2>/dev/null; [[ -f '$tmp/out2/a.json' ]]"
+
 echo "$passed passed, $failed failed"
 [[ $failed -eq 0 ]]

@@ -186,3 +186,20 @@ def test_tradeoff_rows(bundled_probe):
     assert rows["method"] == ["variance"] * 4 and rows["resolution"] == ["auto"] * 4
     with pytest.raises(pl.Error, match="at least 1"):
         pl.tradeoff(a, counts=[0])
+
+
+def test_bake_files_bakes_a_library_and_reports_a_bad_probe(bundled_probe, tmp_path):
+    """A folder and a file: each result equals bake_file's, a probe that cannot be read is reported and the rest
+    go on."""
+    import shutil
+    library = tmp_path / "library"
+    library.mkdir()
+    shutil.copy(bundled_probe, library / "a.hdr")
+    (library / "broken.hdr").write_text("junk")
+    results = pl.bake_files([str(library), bundled_probe], lights=12, evaluate=True, effects="diffuse,shadow")
+    assert [os.path.basename(r["source"]["path"]) for r in results] == ["a.hdr", "broken.hdr", "noon_grass_1k.hdr"]
+    assert "cannot read probe" in results[1]["error"]
+    single = pl.bake_file(bundled_probe, lights=12, evaluate=True, effects="diffuse,shadow")
+    for r in (results[0], results[2]):
+        assert np.array_equal(r["lights"]["rgb"], single["lights"]["rgb"])
+        assert r["evaluation"] == single["evaluation"]

@@ -1,0 +1,32 @@
+// Many probes in one process (a whole HDRI library): the inputs expanded to files, and a pipeline that loads
+// the next probe on a second thread while the caller bakes the current one. In probelights_io (it reads files
+// with OpenImageIO); the CLI's `probelights bake --out-dir` and the module's bake_files() run on it.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "probelights/probe.h"
+
+namespace probelights {
+
+// Files, directories (their image files, sorted; not recursive) and glob patterns, in order, each file once.
+// An input that names nothing is kept as it is, so that its load reports it.
+std::vector<std::string> expandProbePaths(const std::vector<std::string>& inputs);
+
+struct LoadedProbe {
+  std::string path;
+  std::optional<Probe> probe;  // empty when it could not be loaded
+  std::string error;           // why, one line
+  double loadMs = 0;
+};
+
+// Calls consume(item) for each path in order; while it runs, the next probe is being loaded (read and
+// validated) on another thread, so a library bakes in about max(load, bake) per probe rather than the sum.
+// A probe that fails to load arrives with its error; the others go on.
+void forEachProbe(const std::vector<std::string>& paths, const ProbeOptions& options,
+                  const std::function<void(LoadedProbe&)>& consume);
+
+}  // namespace probelights
