@@ -293,6 +293,14 @@ py::tuple shSample(Pixels pixels, int bands, double epsilon, int samples, int de
 
 }  // namespace
 
+// The options bake, bake_file and bake_files share (after the probe and its projection), in their order.
+#define PROBELIGHTS_BAKE_KWARGS                                                             \
+  py::arg("method") = "variance", py::arg("lights") = 16, py::arg("centroid") = "energy",   \
+  py::arg("resolution") = "auto", py::arg("horizon") = false, py::arg("bands") = 8,         \
+  py::arg("epsilon") = 0.01, py::arg("effects") = "diffuse", py::arg("evaluate") = false,   \
+  py::arg("refit") = false, py::arg("move_directions") = false, py::arg("max_error") = 0.0, \
+  py::arg("evaluator_width") = 2048, py::arg("nonfinite") = "error"
+
 PYBIND11_MODULE(_probelights, m) {
   m.doc() = "probelights: turn an HDR light probe into N lights that carry exactly its energy";
   py::register_exception<Error>(m, "Error", PyExc_ValueError);
@@ -305,11 +313,7 @@ PYBIND11_MODULE(_probelights, m) {
       "rows: a dict of columns (method, lights, made, resolution, refit, bake_ms, each effect's error), one "
       "entry per (method, count, refit).");
   m.def("bake", &bakePixels, py::arg("pixels"), py::kw_only(), py::arg("projection") = "latlong",
-        py::arg("method") = "variance", py::arg("lights") = 16, py::arg("centroid") = "energy",
-        py::arg("resolution") = "auto", py::arg("horizon") = false, py::arg("bands") = 8,
-        py::arg("epsilon") = 0.01, py::arg("effects") = "diffuse", py::arg("evaluate") = false,
-        py::arg("refit") = false, py::arg("move_directions") = false, py::arg("max_error") = 0.0,
-        py::arg("evaluator_width") = 2048, py::arg("nonfinite") = "error",
+        PROBELIGHTS_BAKE_KWARGS,
         "Bake a probe given as a float32 H x W x C array (rows top to bottom; not copied). Returns the "
         "layout the CLI's JSON has (result_layout.h): source, method, ..., lights: a dict of numpy arrays "
         "(direction (N,3), rgb (N,3), solid_angle, angular_radius, energy_share (N,), rect (N,4)), "
@@ -317,19 +321,11 @@ PYBIND11_MODULE(_probelights, m) {
         "evaluate/refit/max_error ask for it.");
 #if PROBELIGHTS_MODULE_IO
   m.def("bake_file", &bakeFile, py::arg("path"), py::kw_only(), py::arg("projection") = "auto",
-        py::arg("method") = "variance", py::arg("lights") = 16, py::arg("centroid") = "energy",
-        py::arg("resolution") = "auto", py::arg("horizon") = false, py::arg("bands") = 8,
-        py::arg("epsilon") = 0.01, py::arg("effects") = "diffuse", py::arg("evaluate") = false,
-        py::arg("refit") = false, py::arg("move_directions") = false, py::arg("max_error") = 0.0,
-        py::arg("evaluator_width") = 2048, py::arg("nonfinite") = "error",
+        PROBELIGHTS_BAKE_KWARGS,
         "Read a probe with OpenImageIO and bake it: the same options and dict as bake(), with source.path "
         "and timings_ms.load set.");
   m.def("bake_files", &bakeFiles, py::arg("paths"), py::kw_only(), py::arg("projection") = "auto",
-        py::arg("method") = "variance", py::arg("lights") = 16, py::arg("centroid") = "energy",
-        py::arg("resolution") = "auto", py::arg("horizon") = false, py::arg("bands") = 8,
-        py::arg("epsilon") = 0.01, py::arg("effects") = "diffuse", py::arg("evaluate") = false,
-        py::arg("refit") = false, py::arg("move_directions") = false, py::arg("max_error") = 0.0,
-        py::arg("evaluator_width") = 2048, py::arg("nonfinite") = "error",
+        PROBELIGHTS_BAKE_KWARGS,
         "Bake many probes (files, directories, globs) in order, the next loading while one bakes: a list of "
         "bake_file's dicts, with {'source': {'path'}, 'error'} for a probe that failed.");
 #endif
