@@ -7,6 +7,8 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <tuple>
+
 #include "probelights/bake.h"
 #if PROBELIGHTS_MODULE_IO
 #include "probelights/batch.h"
@@ -152,16 +154,26 @@ py::dict bakePixels(Pixels pixels, const std::string& projection, const std::str
 }
 
 #if PROBELIGHTS_MODULE_IO
+// What bake_file and bake_files are asked for: how to read the probes, and the bake.
+std::tuple<ProbeOptions, BakeOptions, AccuracyOptions> fileRequest(
+    const std::string& projection, const std::string& method, int lights, const std::string& centroid,
+    const std::string& resolution, bool horizon, int bands, double epsilon, const std::string& effects,
+    bool evaluate, bool refit, bool moveDirections, double maxError, int evaluatorWidth,
+    const std::string& nonfinite) {
+  ProbeOptions probe;
+  probe.projection = parseProjectionChoice(projection);
+  probe.nonFinite = parseNonFinitePolicy(nonfinite);
+  return {probe, bakeOptions(method, lights, centroid, resolution, horizon, bands, epsilon),
+          accuracyOptions(effects, evaluate, refit, maxError, evaluatorWidth, moveDirections)};
+}
+
 py::dict bakeFile(const std::string& path, const std::string& projection, const std::string& method,
                   int lights, const std::string& centroid, const std::string& resolution, bool horizon,
                   int bands, double epsilon, const std::string& effects, bool evaluate, bool refit,
                   bool moveDirections, double maxError, int evaluatorWidth, const std::string& nonfinite) {
-  ProbeOptions probeOptions;
-  probeOptions.projection = parseProjectionChoice(projection);
-  probeOptions.nonFinite = parseNonFinitePolicy(nonfinite);
-  const BakeOptions options = bakeOptions(method, lights, centroid, resolution, horizon, bands, epsilon);
-  const AccuracyOptions accuracy =
-      accuracyOptions(effects, evaluate, refit, maxError, evaluatorWidth, moveDirections);
+  const auto [probeOptions, options, accuracy] =
+      fileRequest(projection, method, lights, centroid, resolution, horizon, bands, epsilon, effects,
+                  evaluate, refit, moveDirections, maxError, evaluatorWidth, nonfinite);
   std::optional<Probe> probe;
   EvaluatedBake result;
   double loadMs = 0;
@@ -182,12 +194,9 @@ py::list bakeFiles(const std::vector<std::string>& inputs, const std::string& pr
                    const std::string& resolution, bool horizon, int bands, double epsilon,
                    const std::string& effects, bool evaluate, bool refit, bool moveDirections,
                    double maxError, int evaluatorWidth, const std::string& nonfinite) {
-  ProbeOptions probeOptions;
-  probeOptions.projection = parseProjectionChoice(projection);
-  probeOptions.nonFinite = parseNonFinitePolicy(nonfinite);
-  const BakeOptions options = bakeOptions(method, lights, centroid, resolution, horizon, bands, epsilon);
-  const AccuracyOptions accuracy =
-      accuracyOptions(effects, evaluate, refit, maxError, evaluatorWidth, moveDirections);
+  const auto [probeOptions, options, accuracy] =
+      fileRequest(projection, method, lights, centroid, resolution, horizon, bands, epsilon, effects,
+                  evaluate, refit, moveDirections, maxError, evaluatorWidth, nonfinite);
   py::list out;
   {
     py::gil_scoped_release release;
