@@ -12,7 +12,7 @@ import time
 import bpy
 import numpy as np
 
-from . import cycles_settings, native, render_cost
+from . import cycles_settings, eevee_settings, native, render_cost
 from .errors import ProbeError
 from .light_objects import baked_worlds, make_lights, remove_collection_if_empty, remove_lights, world_collection
 from .world_graph import find_probe
@@ -105,6 +105,10 @@ def bake_world(context, settings, progress=lambda fraction: None, rendered=None,
     offer = cycles_settings.advice(scene, len(lights))
     if offer:
         warnings.append(offer + " (Use Cycles settings for lamps in the panel)")
+    suns = len(lights) if settings.light_type == "SUN" else 0
+    shadows = eevee_settings.advice(scene, suns)
+    if shadows:
+        warnings.append(shadows + " (Fit EEVEE shadows in the panel)")
     noise = cycles_settings.noise_note(scene, len(lights))
     if noise:
         warnings.append(noise)
@@ -145,7 +149,7 @@ def image_changed(world):
 
 def restore_world(scene, world):
     """Takes `world`'s lamps, mix and records out; its collection goes when empty; the Cycles settings the add-on
-    set go back once no baked world is left in the scene. Returns a one-line summary ('' if nothing was baked)."""
+    and EEVEE settings the add-on set go back once no baked world is left in the scene. Returns a one-line summary ('' if nothing was baked)."""
     if world is None:
         return ""
     removed = remove_lights(world)
@@ -153,10 +157,11 @@ def restore_world(scene, world):
     collection_gone = remove_collection_if_empty(world)
     if IMAGE_KEY in world:
         del world[IMAGE_KEY]
-    cycles = []
+    cycles = eevee = []
     if not any(world_collection(w) is not None and scene.user_of_id(world_collection(w)) for w in baked_worlds()):
         cycles = cycles_settings.restore(scene)
-    if not (removed or restored or collection_gone or cycles):
+        eevee = eevee_settings.restore(scene)
+    if not (removed or restored or collection_gone or cycles or eevee):
         return ""
     parts = ["removed %d lights" % removed]
     if restored:
@@ -164,4 +169,8 @@ def restore_world(scene, world):
     if cycles:
         parts.append("Cycles %s back" % " and ".join(c.replace("sample_clamp_indirect", "indirect clamp")
                                                      .replace("use_light_tree", "light tree") for c in cycles))
+    if eevee:
+        parts.append("EEVEE %s back" % " and ".join(e.replace("shadow_pool_size", "shadow pool")
+                                                    .replace("shadow_resolution_scale", "shadow resolution")
+                                                    for e in eevee))
     return ", ".join(parts)

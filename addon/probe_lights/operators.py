@@ -5,7 +5,7 @@ import time
 
 import bpy
 
-from . import cycles_settings, native
+from . import cycles_settings, eevee_settings, native
 from .bake import RENDER_WIDTH, bake_world, needs_render, report_lines, restore_world, world_probe
 from .errors import ProbeError
 from .properties import SETTING_NAMES, bake_settings
@@ -254,5 +254,25 @@ class PROBE_LIGHTS_OT_cycles_settings(bpy.types.Operator):
         return {"FINISHED"}
 
 
+class PROBE_LIGHTS_OT_eevee_settings(bpy.types.Operator):
+    """Give EEVEE's shadow pool room for every baked sun (a full pool drops shadows at random): the smallest pool
+    that holds them, at half or a quarter shadow resolution if even the largest cannot; Restore world puts the old
+    values back"""
+
+    bl_idname = "probe_lights.eevee_settings"
+    bl_label = "Fit EEVEE shadows to the lamps"
+    bl_options = {"REGISTER", "UNDO"}
+
+    def execute(self, context):
+        settings = context.scene.probe_lights
+        suns = settings.last_count if settings.light_type == "SUN" else 0
+        changed = eevee_settings.apply(context.scene, suns)
+        if changed:
+            self.report({"INFO"}, "EEVEE: set %s (Restore world puts them back)" % eevee_settings.describe(changed))
+        else:
+            self.report({"INFO"}, "EEVEE's shadow pool already holds the lamps")
+        return {"FINISHED"}
+
+
 classes = (PROBE_LIGHTS_OT_bake, PROBE_LIGHTS_OT_restore, PROBE_LIGHTS_OT_tradeoff, PROBE_LIGHTS_OT_set_count,
-           PROBE_LIGHTS_OT_cycles_settings)
+           PROBE_LIGHTS_OT_cycles_settings, PROBE_LIGHTS_OT_eevee_settings)

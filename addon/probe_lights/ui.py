@@ -3,7 +3,7 @@ widths: short labels, enums as buttons, and every long line (results, notes, war
 
 import bpy
 
-from . import cycles_settings, native
+from . import cycles_settings, eevee_settings, native
 from .bake import image_changed
 from .light_objects import baked_worlds, world_collection
 from .text_fit import fits, wrap
@@ -108,13 +108,19 @@ def _draw_results(layout, context, width, measure):
         for note in filter(None, settings.last_notes.split("\n")):
             _lines(col, note, width, measure, icon="INFO")
         for warning in filter(None, settings.last_warnings.split("\n")):
-            if "Use Cycles settings" not in warning:
+            if "Use Cycles settings" not in warning and "Fit EEVEE shadows" not in warning:
                 _lines(col, warning, width, measure, icon="ERROR")
     offer = cycles_settings.advice(scene, settings.last_count) if settings.last_count else ""
     if offer:
         box = layout.box()
         _lines(box.column(align=True), offer, width - 16, measure, icon="ERROR")
         box.operator("probe_lights.cycles_settings", icon="CHECKMARK")
+    suns = settings.last_count if settings.light_type == "SUN" else 0
+    shadows = eevee_settings.advice(scene, suns)
+    if shadows:
+        box = layout.box()
+        _lines(box.column(align=True), shadows, width - 16, measure, icon="ERROR")
+        box.operator("probe_lights.eevee_settings", icon="CHECKMARK")
 
 
 def _draw_baked_worlds(layout, scene):

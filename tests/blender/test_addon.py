@@ -520,6 +520,35 @@ def test_cycles_settings_offer_and_restore():
     assert scene.cycles.sample_clamp_indirect == 10.0 and (not has_tree or not scene.cycles.use_light_tree)
 
 
+def test_eevee_shadow_pool_offer_and_restore():
+    """EEVEE Next (4.2+) keeps shadows in a pool that about 19 suns fill: the bake says so, the offer makes room
+    without ever shrinking the pool or going past 1 GB, and Restore world puts the user's values back."""
+    harness.empty_scene()
+    scene = bpy.context.scene
+    harness.env_world(bpy.data.images.load(harness.BUNDLED_PROBE))
+    scene.render.engine = harness.eevee_engine()
+    settings = scene.probe_lights
+    shadows = harness.addon_module("eevee_settings")
+    if bpy.app.version < (4, 2, 0):  # EEVEE Legacy has no shadow pool
+        bake(count=64)
+        assert "shadow pages" not in settings.last_warnings and shadows.advice(scene, 64) == ""
+        print("  skipped: EEVEE Legacy (Blender %s) has no shadow pool" % bpy.app.version_string)
+        return
+    scene.eevee.shadow_pool_size, scene.eevee.shadow_resolution_scale = "512", 1.0
+    bake(count=16)  # 16 suns: about 1,900 pages, the default pool holds 2,048
+    assert "shadow pages" not in settings.last_warnings, settings.last_warnings
+    bake(count=30)  # about 3,500 pages: a 1 GB pool at full resolution
+    assert "30 suns need about 3,531 shadow pages" in settings.last_warnings, settings.last_warnings
+    assert bpy.ops.probe_lights.eevee_settings() == {"FINISHED"}
+    assert (scene.eevee.shadow_pool_size, scene.eevee.shadow_resolution_scale) == ("1024", 1.0)
+    bake(count=64)  # more than 1 GB holds at full resolution: half resolution in the pool already set
+    assert bpy.ops.probe_lights.eevee_settings() == {"FINISHED"} and shadows.advice(scene, 64) == ""
+    assert (scene.eevee.shadow_pool_size, scene.eevee.shadow_resolution_scale) == ("1024", 0.5)
+    assert bpy.ops.probe_lights.restore() == {"FINISHED"}
+    assert (scene.eevee.shadow_pool_size, scene.eevee.shadow_resolution_scale) == ("512", 1.0)
+    scene.render.engine = "CYCLES"
+
+
 def test_inputs_that_are_not_what_they_claim():
     harness.empty_scene()
     settings = bpy.context.scene.probe_lights
@@ -613,5 +642,6 @@ harness.run([test_register_unregister, test_real_probes_bake_with_their_energy,
              test_worlds_keep_their_own_lamps_and_mix, test_a_bake_by_version_0_1_is_adopted,
              test_the_bakes_nodes_are_framed_beside_the_users,
              test_tolerance_never_backfires, test_cycles_settings_offer_and_restore,
+             test_eevee_shadow_pool_offer_and_restore,
              test_inputs_that_are_not_what_they_claim, test_thousands_of_lamps_go_in_one_batch,
              test_panel_draws_at_default_width_in_this_blender])

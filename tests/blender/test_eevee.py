@@ -28,6 +28,17 @@ def test_world_mix_in_eevee():
     scene.eevee.taa_render_samples = 16
     a = render_scene.render()
     assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=64) == {"FINISHED"}
+    if bpy.app.version >= (4, 2, 0):
+        # 64 suns need about 6,800 shadow pages and EEVEE Next's default pool (512 MB) holds 2,048: when it is full
+        # EEVEE drops pages by thread timing. Measured: the lit objects then came out up to 3.3 % brighter from one
+        # render to the next (4.2 % to 7.3 % from the world-lit render), which failed this test on one machine and
+        # not on another. The add-on says so and its offer makes room (ctest fails on "Shadow buffer full").
+        shadows = harness.addon_module("eevee_settings")
+        assert "64 suns need about" in shadows.advice(scene, 64), shadows.advice(scene, 64)
+        assert bpy.ops.probe_lights.eevee_settings() == {"FINISHED"}
+        assert shadows.advice(scene, 64) == ""
+        print("  EEVEE shadows: pool %s MB, resolution %g" % (scene.eevee.shadow_pool_size,
+                                                             scene.eevee.shadow_resolution_scale))
     b = render_scene.render()
     mix = next(n for n in world.node_tree.nodes if n.bl_idname == "ShaderNodeMixShader")
     original = mix.inputs[2].links[0].from_node
@@ -44,9 +55,9 @@ def test_world_mix_in_eevee():
     like = float(np.abs(yb[objects] - ya[objects]).mean() / ya[objects].mean())
     print("  EEVEE: world light added to the baked scene %.3f %%, background vs world-lit %.3f %%, baked vs world-lit "
           "objects %.2f %%" % (100 * twice, 100 * seen, 100 * like))
-    # The world lights nothing: EEVEE Legacy 0.14 %; EEVEE Next 0.36 % (4.5) to 0.50 % (5.2), where the background the
-    # camera sees reaches the objects through screen-space effects, not through the world probe (93.8 % before
-    # the add-on gave EEVEE its own World Output).
+    # The world lights nothing: EEVEE Legacy 0.14 %; EEVEE Next 0.33 % (4.5), where the pixels at the objects' edges
+    # are filtered with the background the camera sees (inside, 2 pixels from any edge: 0.01 %), not lit by the
+    # world probe (93.8 % before the add-on gave EEVEE its own World Output).
     assert twice < (0.005 if bpy.app.version < (4, 2, 0) else 0.01), twice
     assert seen < 0.005, seen    # but the camera still sees it
     assert like < 0.15, like     # and the suns stand in for it (EEVEE's shadows and probes are approximate)
