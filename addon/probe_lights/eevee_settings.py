@@ -28,7 +28,7 @@ def _eevee_next(scene):
 
 
 def _pages(suns, scale):
-    per_sun = next((pages for at, pages in PAGES_PER_SUN if scale >= at - 1e-6), PAGES_PER_SUN[-1][1])
+    per_sun = next((pages for at, pages in reversed(PAGES_PER_SUN) if at >= scale - 1e-6), PAGES_PER_SUN[0][1])
     return int(suns * per_sun * MARGIN)
 
 

@@ -4,9 +4,9 @@
 //   build/bin/probelights_bench                                  everything
 //   build/bin/probelights_bench --benchmark_filter='8192'        one size
 // Probes are synthetic (sky gradient, ground, a 3x3-pixel sun ~1e5 x the sky) so every size is available.
-// Each bake also reports, from the same run, what bounds it on this machine: `x_sum_pass` (its time over one pass
-// that sums the image in memory), `fresh_MB` (memory it touched for the first time: minor page faults x page size)
-// and `touch_ms` (what first-touching that much costs here, from BM_FirstTouch's measurement).
+// Each bake also reports, from the same run, what bounds it on this machine: `x_sum_pass` (its time over one
+// pass that sums the image in memory), `fresh_MB` (memory it touched for the first time: minor page faults x
+// page size) and `touch_ms` (what first-touching that much costs here, from BM_FirstTouch's measurement).
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>
 #include <unistd.h>
@@ -82,7 +82,8 @@ double sumPassMs(const Probe& probe) {
   return best;
 }
 
-// Writing 256 MB the process has never touched (malloc'd, so mmap'd fresh), on one thread: ms per MB, best of 3.
+// Writing 256 MB the process has never touched (malloc'd, so mmap'd fresh), on one thread: ms per MB, best of
+// 3.
 double firstTouchMsPerMb() {
   static const double cost = [] {
     const std::size_t mb = 256;
@@ -112,7 +113,8 @@ void BM_SumImage(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(sumImage(probe.view()));
 }
 
-// What first-touching fresh memory costs on this machine (the kernel hands out zeroed pages one fault at a time).
+// What first-touching fresh memory costs on this machine (the kernel hands out zeroed pages one fault at a
+// time).
 void BM_FirstTouch(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(firstTouchMsPerMb());
   state.counters["ms_per_MB"] = firstTouchMsPerMb();

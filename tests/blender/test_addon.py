@@ -546,6 +546,9 @@ def test_eevee_shadow_pool_offer_and_restore():
     assert (scene.eevee.shadow_pool_size, scene.eevee.shadow_resolution_scale) == ("1024", 0.5)
     assert bpy.ops.probe_lights.restore() == {"FINISHED"}
     assert (scene.eevee.shadow_pool_size, scene.eevee.shadow_resolution_scale) == ("512", 1.0)
+    scene.eevee.shadow_resolution_scale = 0.75  # between two measured scales: costed as the finer one
+    assert "20 suns need about 2,354" in shadows.advice(scene, 20), shadows.advice(scene, 20)
+    scene.eevee.shadow_resolution_scale = 1.0
     scene.render.engine = "CYCLES"
 
 
