@@ -18,7 +18,7 @@ bl_info = {
 
 import bpy  # noqa: E402
 
-from . import light_objects, operators, properties, ui  # noqa: E402
+from . import light_objects, operators, properties, ui, world_image  # noqa: E402
 
 classes = properties.classes + operators.classes + ui.classes
 
@@ -31,6 +31,7 @@ def register():
 
 
 def unregister():
+    world_image.unregister()
     light_objects.unregister()
     properties.unregister()
     for cls in reversed(classes):

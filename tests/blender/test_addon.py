@@ -552,6 +552,26 @@ def test_eevee_shadow_pool_offer_and_restore():
     scene.render.engine = "CYCLES"
 
 
+def test_the_read_buffer_is_reused_only_when_nobody_holds_it():
+    """Pixels are read into a buffer kept for the next read (an 8K read into fresh memory costs 2x more), but never
+    into one whose pixels somebody still holds (a running tradeoff): that read gets a buffer of its own."""
+    world_image = harness.addon_module("world_image")
+    img = harness.float_image("reused", np.arange(8 * 16 * 3, dtype=np.float32).reshape(8, 16, 3))
+    a = world_image.image_pixels(img)
+    held = a.copy()
+    b = world_image.image_pixels(img)  # a is still held: b must not overwrite it
+    assert b.base is not a.base and np.array_equal(a, b) and np.array_equal(a, held)
+    del a
+    kept = id(world_image._kept[0])  # an id, not a reference: holding the buffer would keep it from reuse
+    assert id(b.base) == kept
+    del b
+    c = world_image.image_pixels(img)  # nobody holds the kept buffer now: reused
+    assert id(c.base) == kept and np.array_equal(c, held)
+    img.pixels[0] = -7.0  # bottom-left red in Blender's rows: the last row of ours
+    d = world_image.image_pixels(img)
+    assert id(d.base) != kept and d[-1, 0, 0] == -7.0 and np.array_equal(c, held), (d[-1, 0, 0], c[-1, 0, 0])
+
+
 def test_inputs_that_are_not_what_they_claim():
     harness.empty_scene()
     settings = bpy.context.scene.probe_lights
@@ -645,6 +665,6 @@ harness.run([test_register_unregister, test_real_probes_bake_with_their_energy,
              test_worlds_keep_their_own_lamps_and_mix, test_a_bake_by_version_0_1_is_adopted,
              test_the_bakes_nodes_are_framed_beside_the_users,
              test_tolerance_never_backfires, test_cycles_settings_offer_and_restore,
-             test_eevee_shadow_pool_offer_and_restore,
+             test_eevee_shadow_pool_offer_and_restore, test_the_read_buffer_is_reused_only_when_nobody_holds_it,
              test_inputs_that_are_not_what_they_claim, test_thousands_of_lamps_go_in_one_batch,
              test_panel_draws_at_default_width_in_this_blender])
