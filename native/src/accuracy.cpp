@@ -2,9 +2,11 @@
 
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "probelights/error.h"
+#include "probelights/stopwatch.h"
 
 namespace probelights {
 
@@ -12,9 +14,18 @@ AutoCountResult autoCount(const Probe& probe, const Evaluator& evaluator, BakeOp
                           double tolerance, bool refit, int maxLights, bool moveDirections) {
   if (!(tolerance > 0)) throw Error("the error tolerance must be positive");
   AutoCountResult best;
+  // One working grid for every count tried (the grid does not depend on the count).
+  std::optional<MomentTable> table;
+  double tablesMs = 0;
+  if (usesWorkingGrid(options.method)) {
+    Stopwatch t;
+    table.emplace(probe, options.resolution.cellSize(probe.width()));
+    tablesMs = t.ms();
+  }
   auto attempt = [&](int n) {
     options.lights = n;
-    BakeResult r = bake(probe, options);
+    BakeResult r = table ? bake(probe, *table, options) : bake(probe, options);
+    if (table) r.timings.tablesMs = tablesMs;
     if (refit && r.lights.size() <= kMaxRefitLights)
       r.lights = refitIrradiance(evaluator, r.lights, nullptr, moveDirections);
     EffectErrors e = evaluator.evaluate(r.lights);

@@ -51,11 +51,20 @@ BakeResult bake(const Probe& probe, const BakeOptions& options) {
 
   Stopwatch t;
   const MomentTable table(probe, options.resolution.cellSize(probe.width()));
-  result.timings.tablesMs = t.ms();
+  const double tablesMs = t.ms();
+  result = bake(probe, table, options);
+  result.timings.tablesMs = tablesMs;
+  return result;
+}
+
+BakeResult bake(const Probe& probe, const MomentTable& table, const BakeOptions& options) {
+  checkLightCount(options.lights);
+  if (!usesWorkingGrid(options.method)) throw Error("the sh method bakes without a working grid");
+  BakeResult result;
   result.cellSize = table.cellSize();
   result.totalRgb = table.integral();
 
-  t.restart();
+  Stopwatch t;
   std::unique_ptr<CutRule> rule;
   if (options.method == Method::MedianCut)
     rule = std::make_unique<MedianCutRule>(probe.projection());

@@ -229,6 +229,34 @@ TEST(Bake, BitIdenticalWhateverTheThreadCount) {
   }
 }
 
+TEST(Bake, OnePrebuiltGridGivesEveryCountTheLightsOfItsOwnBake) {
+  // autoCount and the tradeoff grid build the working grid once and bake every count on it.
+  auto t = sunnySky(512, 256);
+  for (Method m : {Method::MedianCut, Method::Variance})
+    for (int cellSize : {1, 4}) {
+      const MomentTable table(t.probe, cellSize);
+      for (int n : {1, 7, 64}) {
+        BakeOptions o;
+        o.method = m;
+        o.lights = n;
+        o.resolution = cellSize == 1 ? WorkingResolution{WorkingResolution::Mode::Full, 0}
+                                     : WorkingResolution{WorkingResolution::Mode::Width, 128};
+        BakeResult own = bake(t.probe, o), shared = bake(t.probe, table, o);
+        ASSERT_EQ(own.lights.size(), shared.lights.size());
+        EXPECT_EQ(own.cellSize, shared.cellSize);
+        EXPECT_EQ(shared.timings.tablesMs, 0.0);
+        for (std::size_t i = 0; i < own.lights.size(); ++i) {
+          EXPECT_EQ(own.lights[i].rgb, shared.lights[i].rgb);
+          EXPECT_EQ(own.lights[i].direction.x, shared.lights[i].direction.x);
+          EXPECT_EQ(own.lights[i].rect, shared.lights[i].rect);
+        }
+      }
+    }
+  BakeOptions sh;
+  sh.method = Method::SphericalHarmonics;
+  EXPECT_THROW(bake(t.probe, MomentTable(t.probe, 1), sh), Error);  // SH has no grid
+}
+
 TEST(Bake, RejectsZeroAndAbsurdLightCounts) {
   auto t = uniformProbe(8, 4, ProjectionKind::LatLong, {1, 1, 1});
   BakeOptions o;
