@@ -51,7 +51,9 @@ class PROBE_LIGHTS_OT_bake(bpy.types.Operator):
             self._called_off = True
             return {"RUNNING_MODAL"}
         state = self._render.state()
-        if state == "running":
+        # "done" comes from render_complete, before Blender has ended its render job: until it has, nothing may
+        # change data (the render's scene is still in use), so the bake waits for the job's end.
+        if state == "running" or (hasattr(bpy.app, "is_job_running") and bpy.app.is_job_running("RENDER")):
             return {"PASS_THROUGH"}
         context.window_manager.event_timer_remove(self._timer)
         try:

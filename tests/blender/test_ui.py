@@ -82,6 +82,16 @@ def _drawn(area, region_type="WINDOW"):
     return original, calls, errors
 
 
+def writable():
+    """Whether a script may change data now (not while Blender is drawing or finishing a render)."""
+    render = bpy.context.scene.render
+    try:
+        render.resolution_percentage = render.resolution_percentage  # an RNA write, checked like an operator's
+        return True
+    except (AttributeError, RuntimeError, TypeError):
+        return False
+
+
 def test_a_rendered_world_bakes_as_a_render_job_that_escape_cancels():
     """A Sky Texture world is rendered by Blender's render job (progress in the status bar, the interface live);
     Esc cancels it and nothing changes; left alone, the bake follows the render."""
@@ -116,6 +126,15 @@ def test_a_rendered_world_bakes_as_a_render_job_that_escape_cancels():
     assert bpy.context.scene.probe_lights.last_source.startswith("rendered world")
     assert len(bpy.data.scenes) == scenes
     print("  rendered world: cancelled by Esc, then baked in %.0f ms" % bpy.context.scene.probe_lights.last_ms)
+    # The lamps come as soon as the render's pixels do; Blender leaves its rendering state a moment later, and
+    # until then no script may change data ("can't modify blend data in this state (drawing/rendering)": seen in
+    # CI, with the machine loaded by the other tests).
+    waited = 0
+    while not writable():
+        assert waited < 150, "Blender stayed in its rendering state for 30 s"
+        waited += 1
+        yield
+    print("  data writable again %d event-loop steps after the lamps came" % waited)
     bpy.ops.probe_lights.restore()
     bpy.context.scene.world = previous
 
