@@ -12,6 +12,7 @@ from .conversion import srgb_to_linear
 from .errors import ProbeError
 
 LINEAR_SPACES = {"Linear", "Linear Rec.709", "Non-Color", "Raw", "Linear CIE-XYZ E"}
+GIL_HOLD_SECONDS = 1.0  # Python's thread switch interval while the world's render job runs (WorldRender.start)
 KEEP_SECONDS = 60.0  # how long the read buffer is kept after a read (Blender's timers: only with a window)
 
 _kept = []  # at most one float32 buffer, for the next read of an image of the same size
@@ -100,6 +101,7 @@ class WorldRender:
         os.close(fd)
         self._state = "ready"
         self._display = None
+        self._switch = None
         scene, cam_data, cam = self.scene, self.cam_data, self.cam
         scene.world = self.world
         cam_data.type = "PANO"
@@ -131,12 +133,24 @@ class WorldRender:
 
     def start(self, context):
         """Starts Blender's render job (needs a window). The render view does not open: Blender's display
-        preference is set to none while the job runs and put back by close()."""
+        preference is set to none while the job runs and put back by close().
+
+        While the job runs, Python's thread switch interval is long (put back by close()). Blender keeps one flag
+        for "Python may write data now": each Python callback saves it, sets its own and puts the saved value back.
+        Cycles' callbacks run in the render thread; with Python's default 5 ms interval, one can take the GIL in
+        the middle of an interface draw of the main thread (writes off), save that, and put it back after the
+        draw has ended: from then on, as a rule for the rest of the session, no script outside an operator may
+        change data ("can't modify blend data in this state (drawing/rendering)"). Seen in CI after this job.
+        Measured in Blender 3.4 with header draws of 8 ms: stuck after 3 to 17 renders (4 in 28); with the long
+        interval, never in 60 renders, as the GIL then changes hands only between callbacks, where the flag is
+        clear. Draws this slow are what a loaded machine makes of ordinary ones."""
         bpy.app.handlers.render_complete.append(self._complete)
         bpy.app.handlers.render_cancel.append(self._cancel)
         view = context.preferences.view
         self._display = view.render_display_type
         view.render_display_type = "NONE"
+        self._switch = sys.getswitchinterval()
+        sys.setswitchinterval(max(self._switch, GIL_HOLD_SECONDS))
         self._state = "running"
         result = bpy.ops.render.render("INVOKE_DEFAULT", write_still=True, scene=self.scene.name)
         if "RUNNING_MODAL" not in result:
@@ -172,6 +186,9 @@ class WorldRender:
         if self._display is not None:
             bpy.context.preferences.view.render_display_type = self._display
             self._display = None
+        if self._switch is not None:
+            sys.setswitchinterval(self._switch)
+            self._switch = None
         for remove, item in ((bpy.data.objects.remove, self.cam), (bpy.data.cameras.remove, self.cam_data),
                              (bpy.data.scenes.remove, self.scene), (bpy.data.worlds.remove, self.world)):
             try:
