@@ -21,6 +21,10 @@ struct BakeArgs {
   bool quiet = false;
 };
 
+// Whether the bake needs nothing of the probe but its working grid (bakesOnGridAlone, and no preview): then
+// the probe is read band by band straight into the grid (grid_load.h) and never held whole.
+bool bakesFromGridAlone(const BakeArgs& a);
+
 // Bakes every probe into a.outDir: <name>.json (and <name>.png) each, and summary.json. Returns 0 when all
 // were baked, 3 when some failed (each said on one line; the others are baked).
 int bakeLibrary(const BakeArgs& a);

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include "bake_args.h"
 #include "commands.h"
@@ -10,6 +11,7 @@
 #include "probelights/accuracy.h"
 #include "probelights/bake.h"
 #include "probelights/evaluate.h"
+#include "probelights/grid_load.h"
 #include "probelights/preview.h"
 #include "probelights/stopwatch.h"
 
@@ -94,20 +96,31 @@ void printSummary(const BakeArgs& a, const Probe& probe, const BakeOptions& opti
     std::printf("(relative RMS of luminance vs the probe)%s\n", ev.refit ? ", lights refit" : "");
     if (ev.refit && !ev.autoCount) std::printf("refit      energy shift %+.2f%%\n", 100 * ev.energyShift);
   }
-  std::printf("time (ms)  load %.1f  tables %.1f  partition %.1f  lights %.1f  (bake %.1f)\n", loadMs,
-              r.timings.tablesMs, r.timings.partitionMs, r.timings.lightsMs,
-              r.timings.tablesMs + r.timings.partitionMs + r.timings.lightsMs);
+  if (probe.hasPixels())
+    std::printf("time (ms)  load %.1f  tables %.1f  partition %.1f  lights %.1f  (bake %.1f)\n", loadMs,
+                r.timings.tablesMs, r.timings.partitionMs, r.timings.lightsMs,
+                r.timings.tablesMs + r.timings.partitionMs + r.timings.lightsMs);
+  else  // read band by band: the tables were built while the image was being read
+    std::printf("time (ms)  load %.1f (tables %.1f of it, while reading)  partition %.1f  lights %.1f\n",
+                loadMs, r.timings.tablesMs, r.timings.partitionMs, r.timings.lightsMs);
 }
 
 }  // namespace
+
+bool bakesFromGridAlone(const BakeArgs& a) {
+  return bakesOnGridAlone(a.bake, a.accuracy) && a.preview.empty() && !a.previews;
+}
 
 int bakeCommand(const std::vector<std::string>& argv) {
   BakeArgs a = parseBakeArgs(argv);
   if (!a.outDir.empty()) return bakeLibrary(a);
   Stopwatch load;
-  Probe probe = Probe::load(a.probe, a.probeOptions);
+  std::optional<GridProbe> grid;
+  if (bakesFromGridAlone(a)) grid.emplace(loadGrid(a.probe, a.probeOptions, a.bake.resolution));
+  const Probe probe = grid ? std::move(grid->probe) : Probe::load(a.probe, a.probeOptions);
   const double loadMs = load.ms();
-  const EvaluatedBake done = bakeEvaluated(probe, a.bake, a.accuracy);
+  const EvaluatedBake done = grid ? bakeOnGrid(probe, grid->table, grid->tablesMs, a.bake)
+                                  : bakeEvaluated(probe, a.bake, a.accuracy);
   if (!a.output.empty()) {
     writeJson(bakeToJson({a.probe, probe, a.bake, done, loadMs}), a.output, 2);
     if (a.output == "-") a.quiet = true;

@@ -80,7 +80,8 @@ int bakeLibrary(const BakeArgs& a) {
   int done = 0, failed = 0;
   nlohmann::json entries = nlohmann::json::array();
   std::size_t index = 0;
-  forEachProbe(paths, a.probeOptions, [&](LoadedProbe& item) {
+  const bool gridOnly = bakesFromGridAlone(a);
+  auto bakeOne = [&](LoadedProbe& item) {
     const std::string& name = names[index++];
     nlohmann::json entry{{"probe", item.path}, {"load_ms", item.loadMs}};
     loadMs += item.loadMs;
@@ -88,7 +89,8 @@ int bakeLibrary(const BakeArgs& a) {
     if (item.probe) {
       try {
         Stopwatch clock;
-        const EvaluatedBake result = bakeEvaluated(*item.probe, a.bake, a.accuracy);
+        const EvaluatedBake result = item.table ? bakeOnGrid(*item.probe, *item.table, item.tablesMs, a.bake)
+                                                : bakeEvaluated(*item.probe, a.bake, a.accuracy);
         const double ms = clock.ms();
         bakeMs += ms;
         writeWhole(dir / (name + ".json"),
@@ -116,7 +118,8 @@ int bakeLibrary(const BakeArgs& a) {
                    (paths.size() - done) / rate);
       std::fflush(stderr);
     }
-  });
+  };
+  forEachProbe(paths, a.probeOptions, bakeOne, gridOnly ? &a.bake.resolution : nullptr);
   if (terminal) std::fputs("\r\033[K", stderr);
   const double seconds = wall.ms() / 1000.0;
   writeWhole(dir / "summary.json", nlohmann::json{{"probes", paths.size()},

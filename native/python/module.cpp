@@ -12,6 +12,7 @@
 #include "probelights/bake.h"
 #if PROBELIGHTS_MODULE_IO
 #include "probelights/batch.h"
+#include "probelights/grid_load.h"
 #endif
 #include "probelights/error.h"
 #include "probelights/evaluate.h"
@@ -180,9 +181,17 @@ py::dict bakeFile(const std::string& path, const std::string& projection, const 
   {
     py::gil_scoped_release release;
     Stopwatch load;
-    probe.emplace(Probe::load(path, probeOptions));
-    loadMs = load.ms();
-    result = bakeEvaluated(*probe, options, accuracy);
+    if (bakesOnGridAlone(options, accuracy)) {
+      // Read band by band straight into the working grid: the image is never held whole.
+      GridProbe grid = loadGrid(path, probeOptions, options.resolution);
+      probe.emplace(std::move(grid.probe));
+      loadMs = load.ms();
+      result = bakeOnGrid(*probe, grid.table, grid.tablesMs, options);
+    } else {
+      probe.emplace(Probe::load(path, probeOptions));
+      loadMs = load.ms();
+      result = bakeEvaluated(*probe, options, accuracy);
+    }
   }
   return toDict(path, *probe, options, result, loadMs);
 }
@@ -200,12 +209,13 @@ py::list bakeFiles(const std::vector<std::string>& inputs, const std::string& pr
   py::list out;
   {
     py::gil_scoped_release release;
-    forEachProbe(expandProbePaths(inputs), probeOptions, [&](LoadedProbe& item) {
+    auto bakeOne = [&](LoadedProbe& item) {
       std::string error = item.error;
       std::optional<EvaluatedBake> result;
       if (item.probe) {
         try {
-          result = bakeEvaluated(*item.probe, options, accuracy);
+          result = item.table ? bakeOnGrid(*item.probe, *item.table, item.tablesMs, options)
+                              : bakeEvaluated(*item.probe, options, accuracy);
         } catch (const std::exception& e) {
           error = e.what();
         }
@@ -219,7 +229,9 @@ py::list bakeFiles(const std::vector<std::string>& inputs, const std::string& pr
         failed["error"] = error;
         out.append(failed);
       }
-    });
+    };
+    forEachProbe(expandProbePaths(inputs), probeOptions, bakeOne,
+                 bakesOnGridAlone(options, accuracy) ? &options.resolution : nullptr);
   }
   return out;
 }

@@ -69,6 +69,24 @@ AutoCountResult autoCount(const Probe& probe, const Evaluator& evaluator, BakeOp
   return best;
 }
 
+bool bakesOnGridAlone(const BakeOptions& options, const AccuracyOptions& a) {
+  return usesWorkingGrid(options.method) && !a.evaluate && !a.refit && !(a.maxError > 0);
+}
+
+EvaluatedBake bakeOnGrid(const Probe& probe, const MomentTable& table, double tablesMs,
+                         const BakeOptions& options) {
+  EvaluatedBake out;
+  out.bake = bake(probe, table, options);
+  out.bake.timings.tablesMs = tablesMs;
+  out.count = options.lights;
+  if (!probe.hasPixels())
+    out.bake.notes.insert(out.bake.notes.begin(), "read band by band into a working grid of " +
+                                                      std::to_string(table.width()) + "x" +
+                                                      std::to_string(table.height()) +
+                                                      " cells, never whole (tables built during the load)");
+  return out;
+}
+
 EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOptions a) {
   if (!(a.maxError >= 0 && a.maxError < 1)) {
     char got[32];

@@ -37,6 +37,7 @@ PixelCut toPixels(const MomentTable& table, const Cut& cut) {
 
 BakeResult bake(const Probe& probe, const BakeOptions& options) {
   checkLightCount(options.lights);
+  probe.requirePixels("baking");
   BakeResult result;
   if (options.method == Method::SphericalHarmonics) {
     ShLightResult sh = shLights(probe, {options.lights, options.shBands, options.shEpsilon, options.shDepth});

@@ -7,6 +7,7 @@
 #include <future>
 #include <set>
 
+#include "probelights/grid_load.h"
 #include "probelights/stopwatch.h"
 
 namespace probelights {
@@ -21,12 +22,19 @@ bool isImageFile(const std::filesystem::path& p) {
   return kImages.count(ext) > 0;
 }
 
-LoadedProbe load(const std::string& path, const ProbeOptions& options) {
+LoadedProbe load(const std::string& path, const ProbeOptions& options, const WorkingResolution* grid) {
   LoadedProbe item;
   item.path = path;
   Stopwatch clock;
   try {
-    item.probe.emplace(Probe::load(path, options));
+    if (grid) {
+      GridProbe g = loadGrid(path, options, *grid);
+      item.probe.emplace(std::move(g.probe));
+      item.table.emplace(std::move(g.table));
+      item.tablesMs = g.tablesMs;
+    } else {
+      item.probe.emplace(Probe::load(path, options));
+    }
   } catch (const std::exception& e) {
     item.error = e.what();
   }
@@ -66,12 +74,12 @@ std::vector<std::string> expandProbePaths(const std::vector<std::string>& inputs
 }
 
 void forEachProbe(const std::vector<std::string>& paths, const ProbeOptions& options,
-                  const std::function<void(LoadedProbe&)>& consume) {
+                  const std::function<void(LoadedProbe&)>& consume, const WorkingResolution* grid) {
   if (paths.empty()) return;
-  std::future<LoadedProbe> next = std::async(std::launch::async, load, paths[0], options);
+  std::future<LoadedProbe> next = std::async(std::launch::async, load, paths[0], options, grid);
   for (std::size_t i = 0; i < paths.size(); ++i) {
     LoadedProbe current = next.get();
-    if (i + 1 < paths.size()) next = std::async(std::launch::async, load, paths[i + 1], options);
+    if (i + 1 < paths.size()) next = std::async(std::launch::async, load, paths[i + 1], options, grid);
     consume(current);
   }
 }

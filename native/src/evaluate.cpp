@@ -101,6 +101,7 @@ bool Evaluator::visible(const Vec3& p, const Vec3& d) {
 }
 
 Evaluator::Evaluator(const Probe& probe, Effects effects, EvaluatorOptions options) : effects_(effects) {
+  probe.requirePixels("evaluating lights");
   // Probe samples: pixels, or cells of whole pixels for probes wider than options.maxWidth.
   const int maxWidth = std::max(1, options.maxWidth);
   const int cell = std::max(1, (probe.width() + maxWidth - 1) / maxWidth);

@@ -2,14 +2,27 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <future>
+#include <memory>
 
 #include "probelights/error.h"
 #include "probelights/probe.h"
 
 namespace probelights {
 
-Image readImage(const std::string& path) {
+namespace {
+
+std::string oneLine(std::string why) {
+  // OpenImageIO's messages can span lines; the user gets one.
+  for (char& c : why)
+    if (c == '\n') c = ' ';
+  return why;
+}
+
+// Opens `path` and checks it is a 2D image with pixels; its spec is in->spec().
+std::unique_ptr<OIIO::ImageInput> openImage(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw Error("cannot read probe '" + path + "': no such file");
   if (std::filesystem::is_directory(path, ec))
@@ -17,11 +30,8 @@ Image readImage(const std::string& path) {
 
   auto in = OIIO::ImageInput::open(path);
   if (!in) {
-    std::string why = OIIO::geterror();
+    std::string why = oneLine(OIIO::geterror());
     if (why.empty()) why = "not an image OpenImageIO can read";
-    // OpenImageIO's messages can span lines; the user gets one.
-    for (char& c : why)
-      if (c == '\n') c = ' ';
     throw Error("cannot read probe '" + path + "': " + why);
   }
   const OIIO::ImageSpec& spec = in->spec();
@@ -29,21 +39,70 @@ Image readImage(const std::string& path) {
     throw Error("cannot read probe '" + path + "': the image is empty (" + std::to_string(spec.width) + "x" +
                 std::to_string(spec.height) + ")");
   if (spec.depth > 1) throw Error("cannot read probe '" + path + "': volume images are not probes");
+  return in;
+}
 
+Image description(const OIIO::ImageInput& in) {
   Image image;
-  image.width = spec.width;
-  image.height = spec.height;
-  image.channels = spec.nchannels;
-  image.format = in->format_name();
+  image.width = in.spec().width;
+  image.height = in.spec().height;
+  image.channels = in.spec().nchannels;
+  image.format = in.format_name();
+  return image;
+}
+
+Error readFailure(const std::string& path, OIIO::ImageInput& in) {
+  std::string why = oneLine(in.geterror());
+  return Error("cannot read probe '" + path + "': " + (why.empty() ? "read failed" : why));
+}
+
+}  // namespace
+
+Image readImage(const std::string& path) {
+  auto in = openImage(path);
+  const OIIO::ImageSpec& spec = in->spec();
+  Image image = description(*in);
   image.pixels.resize(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
   // Subimage 0, MIP level 0 (the finest), every channel, converted to float.
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data())) {
-    std::string why = in->geterror();
-    for (char& c : why)
-      if (c == '\n') c = ' ';
-    throw Error("cannot read probe '" + path + "': " + (why.empty() ? "read failed" : why));
-  }
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data()))
+    throw readFailure(path, *in);
   return image;
+}
+
+Image describeImage(const std::string& path, bool* canReadInBands) {
+  auto in = openImage(path);
+  if (canReadInBands) *canReadInBands = in->spec().tile_width == 0 && !in->spec().deep;
+  return description(*in);
+}
+
+Image readImageBands(const std::string& path, int bandRows,
+                     const std::function<void(const ImageView&)>& consume) {
+  auto in = openImage(path);
+  const OIIO::ImageSpec& spec = in->spec();
+  if (spec.tile_width != 0 || spec.deep)
+    throw Error("cannot read probe '" + path + "' band by band: it is tiled or deep (read it whole)");
+  const Image info = description(*in);
+  const int W = info.width, H = info.height, channels = info.channels;
+  const int rows = std::clamp(bandRows, 1, H), bands = (H + rows - 1) / rows;
+  std::vector<float> buffers[2];
+  for (auto& b : buffers) b.resize(static_cast<std::size_t>(rows) * W * channels);
+  // Band b goes to buffers[b % 2]: the reader fills one while consume() reads the other.
+  auto read = [&](int b) {
+    const int y0 = b * rows, y1 = std::min(H, y0 + rows);
+    // Rows are counted from the top of the data window (spec.y), as read_image counts them.
+    if (!in->read_scanlines(0, 0, spec.y + y0, spec.y + y1, 0, 0, channels, OIIO::TypeDesc::FLOAT,
+                            buffers[b % 2].data()))
+      throw readFailure(path, *in);
+  };
+  std::future<void> next = std::async(std::launch::async, read, 0);
+  for (int b = 0; b < bands; ++b) {
+    next.get();
+    if (b + 1 < bands) next = std::async(std::launch::async, read, b + 1);
+    ImageView view{buffers[b % 2].data(), W, std::min(H, (b + 1) * rows) - b * rows, channels};
+    view.firstRow = b * rows;
+    consume(view);  // if it throws, `next` (declared after the buffers) waits for its read on the way out
+  }
+  return info;
 }
 
 Probe Probe::load(const std::string& path, const ProbeOptions& options) {

@@ -25,6 +25,7 @@ CentroidWeight parseCentroid(const std::string& name) { return parseName(kCentro
 
 std::vector<Light> lightsFromRegions(const Probe& probe, const std::vector<Rect>& regions,
                                      CentroidWeight centroid) {
+  probe.requirePixels("summing lights from pixels");
   std::vector<PixelSums> sums(regions.size());
   parallelFor(static_cast<std::int64_t>(regions.size()),
               [&](std::int64_t i) { sums[i] = sumPixels(probe, regions[i]); });

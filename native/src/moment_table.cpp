@@ -48,24 +48,36 @@ std::string WorkingResolution::toString() const {
 }
 
 MomentTable::MomentTable(const Probe& probe, int cellSize)
-    : cellSize_(cellSize), pixelWidth_(probe.width()), pixelHeight_(probe.height()) {
+    : MomentTable(probe.width(), probe.height(), cellSize) {
+  probe.requirePixels("building the working grid");
+  addBand(probe, 0, probe.height());
+  finish();
+}
+
+MomentTable::MomentTable(int pixelWidth, int pixelHeight, int cellSize)
+    : cellSize_(cellSize), pixelWidth_(pixelWidth), pixelHeight_(pixelHeight) {
   if (cellSize < 1) throw Error("working-grid cell size must be at least 1 pixel");
-  const int W = probe.width(), H = probe.height();
-  const int cellsX = (W + cellSize - 1) / cellSize, cellsY = (H + cellSize - 1) / cellSize;
-  using Values = SummedAreaTable<5>::Values;
+  const int cellsX = (pixelWidth + cellSize - 1) / cellSize, cellsY = (pixelHeight + cellSize - 1) / cellSize;
   // A coarse grid keeps every cell's full sums, so lights are summed from cells without reading the image
   // again; at full resolution that would be 100 bytes a pixel, and lights re-read the pixels of their regions
   // instead.
   if (cellSize > 1) cells_.reset(new CellLight[static_cast<std::size_t>(cellsX) * cellsY]);
+  sat_ = SummedAreaTable<5>(cellsX, cellsY);
+  rowTotals_.assign(cellsY, PixelSums{});
+  rowLitCells_.assign(cellsY, 0);
+}
 
-  std::vector<PixelSums> rowTotals(cellsY);
-  std::vector<long long> rowLitCells(cellsY);
+void MomentTable::addBand(const Probe& band, int y0, int y1) {
+  const int W = pixelWidth_, H = pixelHeight_, cellSize = cellSize_, cellsX = sat_.width();
+  if (y0 % cellSize != 0 || (y1 % cellSize != 0 && y1 != H) || y0 >= y1)
+    throw Error("a band of the working grid must cover whole cell rows");
+  using Values = SummedAreaTable<5>::Values;
   // Each cell row is summed by one thread in a fixed order (the table is bit-identical whatever the thread
   // count).
-  sat_ = SummedAreaTable<5>(cellsX, cellsY, [&](int cy, std::span<Values> out) {
+  sat_.fillRows(y0 / cellSize, (y1 + cellSize - 1) / cellSize, [&](int cy, std::span<Values> out) {
     thread_local std::vector<PixelSums> sums;
     sums.assign(cellsX, PixelSums{});
-    accumulateRows(probe, cy * cellSize, std::min(H, (cy + 1) * cellSize), 0, W, cellSize, sums);
+    accumulateRows(band, cy * cellSize, std::min(H, (cy + 1) * cellSize), 0, W, cellSize, sums);
     PixelSums total;
     long long litCells = 0;
     for (int cx = 0; cx < cellsX; ++cx) {
@@ -78,15 +90,21 @@ MomentTable::MomentTable(const Probe& probe, int cellSize)
             {c.rgb[0], c.rgb[1], c.rgb[2]}, c.solidAngle, c.energy2, {c.moment2.x, c.moment2.y, c.moment2.z}};
       }
     }
-    rowTotals[cy] = total;
-    rowLitCells[cy] = litCells;
+    rowTotals_[cy] = total;
+    rowLitCells_[cy] = litCells;
   });
+}
 
+void MomentTable::finish() {
+  sat_.finish();
   PixelSums total;
-  for (const PixelSums& r : rowTotals) total += r;
+  for (const PixelSums& r : rowTotals_) total += r;
   integral_ = total.rgb;
   totalEnergy_ = total.energy;
-  for (long long n : rowLitCells) litCells_ += n;
+  litCells_ = 0;
+  for (long long n : rowLitCells_) litCells_ += n;
+  rowTotals_ = {};
+  rowLitCells_ = {};
 }
 
 PixelSums MomentTable::cellSums(const Rect& c) const {

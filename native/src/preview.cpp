@@ -21,6 +21,7 @@ double srgbEncode(double c) {
 }  // namespace
 
 void writePreview(const Probe& probe, const BakeResult& result, const std::string& path, int maxWidth) {
+  probe.requirePixels("a preview");
   const int W = probe.width(), H = probe.height();
   const int pw = std::min(W, std::max(1, maxWidth));
   const int ph = std::max(1, static_cast<int>(std::lround(static_cast<double>(H) * pw / W)));

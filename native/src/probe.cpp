@@ -49,8 +49,10 @@ void checkShape(const ImageView& view, const std::string& name) {
   if (view.channels <= 0) throw Error("probe " + name + " has no channels");
 }
 
-ProjectionKind resolveProjection(ProjectionChoice choice, int width, int height, const std::string& name,
-                                 std::vector<std::string>& notes) {
+}  // namespace
+
+ProjectionKind Probe::resolveProjection(ProjectionChoice choice, int width, int height,
+                                        const std::string& name, std::vector<std::string>& notes) {
   switch (choice) {
     case ProjectionChoice::LatLong:
       return ProjectionKind::LatLong;
@@ -69,8 +71,6 @@ ProjectionKind resolveProjection(ProjectionChoice choice, int width, int height,
               std::to_string(height) + ", not 2:1): say latlong, mirror-ball or angular (CLI: --projection)");
 }
 
-}  // namespace
-
 Probe::Probe(ImageView view, ProjectionKind projection, NonFinitePolicy nonFinite)
     : view_(view), projection_((checkShape(view, "buffer"), projection), view.width, view.height) {
   validate(nonFinite);
@@ -88,22 +88,20 @@ Probe::Probe(Image image, ProjectionChoice projection, NonFinitePolicy nonFinite
   }
 }
 
-void Probe::validate(NonFinitePolicy nonFinite) {
+void Probe::count() {
   const int colourChannels = view_.channels < 3 ? 1 : 3;
   struct RowCount {
     long long negative = 0, nonFinite = 0;
     int firstBadX = -1;
   };
-  struct Found {
-    long long negative = 0, nonFinite = 0;
-    int firstBadX = -1, firstBadY = -1;
-  };
-  const Found found = parallelReduce(
-      view_.height, Found{},
-      [&](std::int64_t y) {
+  PixelReport found;
+  found = parallelReduce(
+      view_.height, found,
+      [&](std::int64_t i) {
         RowCount c;
+        const int y = view_.firstRow + static_cast<int>(i);
         for (int x = 0; x < view_.width; ++x) {
-          const float* p = view_.pixel(x, static_cast<int>(y));
+          const float* p = view_.pixel(x, y);
           for (int k = 0; k < colourChannels; ++k) {
             if (!std::isfinite(p[k])) {
               if (c.firstBadX < 0) c.firstBadX = x;
@@ -115,27 +113,67 @@ void Probe::validate(NonFinitePolicy nonFinite) {
         }
         return c;
       },
-      [](Found& f, RowCount c, std::int64_t y) {
-        f.negative += c.negative, f.nonFinite += c.nonFinite;
-        if (f.firstBadY < 0 && c.firstBadX >= 0) f.firstBadX = c.firstBadX, f.firstBadY = static_cast<int>(y);
+      [&](PixelReport& f, RowCount c, std::int64_t i) {
+        f.negativeSamples += c.negative, f.nonFiniteSamples += c.nonFinite;
+        if (f.firstNonFiniteY < 0 && c.firstBadX >= 0)
+          f.firstNonFiniteX = c.firstBadX, f.firstNonFiniteY = view_.firstRow + static_cast<int>(i);
       });
-  report_.negativeSamples += found.negative;
-  report_.nonFiniteSamples += found.nonFinite;
-  if (report_.nonFiniteSamples > 0) {
+  report_.add(found);
+}
+
+void Probe::validate(NonFinitePolicy nonFinite) {
+  count();
+  report_.settle(nonFinite);
+}
+
+void PixelReport::add(const PixelReport& below) {
+  if (firstNonFiniteY < 0 && below.firstNonFiniteY >= 0)
+    firstNonFiniteX = below.firstNonFiniteX, firstNonFiniteY = below.firstNonFiniteY;
+  negativeSamples += below.negativeSamples;
+  nonFiniteSamples += below.nonFiniteSamples;
+}
+
+void PixelReport::settle(NonFinitePolicy policy) {
+  if (nonFiniteSamples > 0) {
     std::string where =
-        "first at pixel (" + std::to_string(found.firstBadX) + ", " + std::to_string(found.firstBadY) + ")";
-    if (nonFinite == NonFinitePolicy::Error)
-      throw Error(std::to_string(report_.nonFiniteSamples) + " NaN/Inf samples, " + where +
+        "first at pixel (" + std::to_string(firstNonFiniteX) + ", " + std::to_string(firstNonFiniteY) + ")";
+    if (policy == NonFinitePolicy::Error)
+      throw Error(std::to_string(nonFiniteSamples) + " NaN/Inf samples, " + where +
                   "; to read them as 0 use the non-finite policy 'zero' (CLI: --nonfinite=zero)");
-    report_.notes.push_back("read " + std::to_string(report_.nonFiniteSamples) + " NaN/Inf samples as 0 (" +
-                            where + ")");
+    notes.push_back("read " + std::to_string(nonFiniteSamples) + " NaN/Inf samples as 0 (" + where + ")");
   }
-  if (report_.negativeSamples > 0)
-    report_.notes.push_back("clamped " + std::to_string(report_.negativeSamples) +
-                            " negative samples to 0 (lossy compression produces them)");
+  if (negativeSamples > 0)
+    notes.push_back("clamped " + std::to_string(negativeSamples) +
+                    " negative samples to 0 (lossy compression produces them)");
+}
+
+Probe::Probe(ImageView view, const Projection& projection) : view_(view), projection_(projection) {}
+
+Probe Probe::band(const ImageView& view, const Projection& projection) {
+  checkShape(view, "band");
+  if (view.width != projection.width() || view.firstRow < 0 ||
+      view.firstRow + view.height > projection.height())
+    throw Error("a band of a probe must lie within it");
+  Probe probe(view, projection);
+  probe.count();
+  return probe;
+}
+
+Probe Probe::withoutPixels(ProjectionKind projection, int width, int height, PixelReport report) {
+  Probe probe(ImageView{nullptr, width, height, 0}, Projection(projection, width, height));
+  probe.report_ = std::move(report);
+  return probe;
+}
+
+void Probe::requirePixels(const std::string& stage) const {
+  if (!hasPixels())
+    throw Error(stage +
+                " needs the probe's pixels, and this probe was read band by band into its working "
+                "grid without keeping them: load it whole (Probe::load)");
 }
 
 Rgb Probe::integral() const {
+  requirePixels("the probe's integral");
   return parallelReduce(
       view_.height, Rgb{},
       [&](std::int64_t y) {

@@ -7,19 +7,31 @@
 namespace probelights {
 
 template <int K>
-SummedAreaTable<K>::SummedAreaTable(int width, int height,
-                                    const std::function<void(int, std::span<Values>)>& rowValues)
+SummedAreaTable<K>::SummedAreaTable(int width, int height, const RowValues& rowValues)
+    : SummedAreaTable(width, height) {
+  fillRows(0, height, rowValues);
+  finish();
+}
+
+template <int K>
+SummedAreaTable<K>::SummedAreaTable(int width, int height)
     : width_(width),
       height_(height),
       table_(new double[static_cast<std::size_t>(width + 1) * (height + 1) *
                         K]) {  // not zero-filled: written once
   std::fill_n(entry(0, 0), (width + 1) * K, 0.0);
+}
+
+template <int K>
+void SummedAreaTable<K>::fillRows(int y0, int y1, const RowValues& rowValues) {
   // Pass 1: table row y + 1 holds the prefix sums along row y.
-  parallelFor(height, [&](std::int64_t y) {
+  const int width = width_;
+  parallelFor(y1 - y0, [&](std::int64_t i) {
+    const int y = y0 + static_cast<int>(i);
     thread_local std::vector<Values> row;
     row.assign(static_cast<std::size_t>(width), Values{});
-    rowValues(static_cast<int>(y), std::span<Values>(row));
-    double* out = entry(0, static_cast<int>(y) + 1);
+    rowValues(y, std::span<Values>(row));
+    double* out = entry(0, y + 1);
     Values running{};
     std::fill_n(out, K, 0.0);
     for (int x = 0; x < width; ++x)
@@ -28,11 +40,15 @@ SummedAreaTable<K>::SummedAreaTable(int width, int height,
         out[(x + 1) * K + k] = running[k];
       }
   });
+}
+
+template <int K>
+void SummedAreaTable<K>::finish() {
   // Pass 2: running sums down the columns, in blocks of columns.
-  const int columns = (width + 1) * K, blocks = std::max(1, std::min(64, columns / 512));
+  const int columns = (width_ + 1) * K, blocks = std::max(1, std::min(64, columns / 512));
   parallelFor(blocks, [&](std::int64_t b) {
     const int c0 = static_cast<int>(b * columns / blocks), c1 = static_cast<int>((b + 1) * columns / blocks);
-    for (int y = 1; y < height; ++y) {
+    for (int y = 1; y < height_; ++y) {
       const double* above = entry(0, y);
       double* out = entry(0, y + 1);
       for (int c = c0; c < c1; ++c) out[c] = above[c] + out[c];

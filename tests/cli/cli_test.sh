@@ -114,5 +114,21 @@ expect_error "library bake into a folder that cannot be made" "cannot write to o
 check "library bake: a refused folder leaves nothing" "[[ ! -e '$tmp/a-file/out' ]]"
 check "library bake: globs" "'$bin' bake '$tmp/lib/*.hdr' --out-dir '$tmp/out2' -q 2>/dev/null; [[ -f '$tmp/out2/a.json' ]]"
 
+# A working grid coarser than the image (here 256 wide, cells of 4 px on the 1K probe): with nothing else asked
+# the probe is read band by band into the grid, never whole; the lights are those of a whole load (a preview
+# needs the pixels, so that bake loads it whole), in one bake and in a library.
+"$bin" bake "$probe" --lights 24 --resolution 256 -o "$tmp/banded.json" >"$tmp/banded.txt"
+"$bin" bake "$probe" --lights 24 --resolution 256 -o "$tmp/whole.json" --preview "$tmp/whole.png" -q
+"$bin" bake "$probe" --lights 24 --resolution 256 --out-dir "$tmp/banded_lib" -q
+check "band-by-band bake: the lights of a whole load, and it says so" "grep -q 'tables .* of it, while reading' '$tmp/banded.txt' && python3 -c \"
+import json
+b, w, l = (json.load(open(f)) for f in ('$tmp/banded.json', '$tmp/whole.json', '$tmp/banded_lib/$(basename "$probe" .hdr).json'))
+assert b['lights'] == w['lights'] == l['lights'] and b['total_rgb'] == w['total_rgb']
+assert any('band by band' in n for n in b['notes']) and not any('band by band' in n for n in w['notes']), b['notes']
+\""
+printf 'PF\n16 8\n-1.0\n' >"$tmp/nan8.pfm"
+python3 -c "import struct,sys; v=[1.0]*384; v[300]=float('nan'); sys.stdout.buffer.write(struct.pack('<384f', *v))" >>"$tmp/nan8.pfm"
+expect_error "NaN pixels, read band by band" "1 NaN/Inf samples, first at pixel (4, 1)" bake "$tmp/nan8.pfm" --resolution 4
+
 echo "$passed passed, $failed failed"
 [[ $failed -eq 0 ]]

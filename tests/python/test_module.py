@@ -89,6 +89,20 @@ def test_bake_file_on_the_bundled_probe(bundled_probe):
     assert set(r["timings_ms"]) == {"load", "tables", "partition", "lights"} and r["timings_ms"]["load"] > 0
 
 
+def test_bake_file_reads_band_by_band_into_a_coarse_grid(bundled_probe):
+    """With nothing asked but the lights, on a grid coarser than the image, bake_file and bake_files read the
+    file band by band into the grid (never whole) and give the lights of a whole load (evaluate=True needs the
+    pixels, so that bake loads it whole)."""
+    banded = pl.bake_file(bundled_probe, lights=20, resolution="256")
+    whole = pl.bake_file(bundled_probe, lights=20, resolution="256", evaluate=True)
+    library = pl.bake_files([bundled_probe], lights=20, resolution="256")[0]
+    assert any("band by band" in n for n in banded["notes"]) and not any("band by band" in n for n in whole["notes"])
+    for r in (banded, library):
+        for column in ("rgb", "direction", "rect", "solid_angle", "angular_radius"):
+            assert np.array_equal(r["lights"][column], whole["lights"][column]), column
+        assert np.array_equal(r["total_rgb"], whole["total_rgb"])
+
+
 def key_paths(value, prefix=""):
     """Every key path of a result: nested objects by name, a table (the JSON's list of rows, the module's dict
     of columns) by its columns."""

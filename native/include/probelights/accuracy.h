@@ -50,4 +50,13 @@ struct EvaluatedBake {
 
 EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOptions accuracy);
 
+// Whether bakeEvaluated needs nothing of the probe but its working grid: a grid method, and no evaluation,
+// refit or tolerance. Then a file can be read band by band into the grid (grid_load.h) and baked with
+// bakeOnGrid, never holding the image whole.
+bool bakesOnGridAlone(const BakeOptions& options, const AccuracyOptions& accuracy);
+
+// bakeEvaluated for such a bake, on the grid loadGrid built (tablesMs: its build time, within the load).
+EvaluatedBake bakeOnGrid(const Probe& probe, const MomentTable& table, double tablesMs,
+                         const BakeOptions& options);
+
 }  // namespace probelights

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "probelights/moment_table.h"
 #include "probelights/probe.h"
 
 namespace probelights {
@@ -18,15 +19,18 @@ std::vector<std::string> expandProbePaths(const std::vector<std::string>& inputs
 
 struct LoadedProbe {
   std::string path;
-  std::optional<Probe> probe;  // empty when it could not be loaded
-  std::string error;           // why, one line
+  std::optional<Probe> probe;        // empty when it could not be loaded
+  std::optional<MomentTable> table;  // its working grid, when read into one (loadGrid)
+  double tablesMs = 0;               // building that grid, part of loadMs
+  std::string error;                 // why, one line
   double loadMs = 0;
 };
 
 // Calls consume(item) for each path in order; while it runs, the next probe is being loaded (read and
 // validated) on another thread, so a library bakes in about max(load, bake) per probe rather than the sum.
-// A probe that fails to load arrives with its error; the others go on.
+// A probe that fails to load arrives with its error; the others go on. With `grid`, each probe is read band
+// by band into its working grid at that resolution (loadGrid: item.table), for bakes that need nothing else.
 void forEachProbe(const std::vector<std::string>& paths, const ProbeOptions& options,
-                  const std::function<void(LoadedProbe&)>& consume);
+                  const std::function<void(LoadedProbe&)>& consume, const WorkingResolution* grid = nullptr);
 
 }  // namespace probelights

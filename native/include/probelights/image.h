@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -17,12 +18,15 @@ struct ImageView {
   int channels = 0;
   std::ptrdiff_t rowStride = 0;    // floats from one row to the next; 0 means width * channels
   std::ptrdiff_t pixelStride = 0;  // floats from one pixel to the next; 0 means channels
+  // A band of a taller image (read band by band: readImageBands): `pixels` holds its rows firstRow ..
+  // firstRow + height - 1, and pixel() takes the image's row numbers.
+  int firstRow = 0;
 
   std::ptrdiff_t rowStep() const {
     return rowStride ? rowStride : static_cast<std::ptrdiff_t>(width) * channels;
   }
   std::ptrdiff_t pixelStep() const { return pixelStride ? pixelStride : channels; }
-  const float* pixel(int x, int y) const { return pixels + y * rowStep() + x * pixelStep(); }
+  const float* pixel(int x, int y) const { return pixels + (y - firstRow) * rowStep() + x * pixelStep(); }
 };
 
 // An image that owns its pixels (what readImage returns).
@@ -40,5 +44,16 @@ struct Image {
 // (OpenEXR incl. half/tiled/mip-mapped/DWAB, Radiance HDR, TIFF, PFM, ...). Throws Error with one line on
 // failure.
 Image readImage(const std::string& path);
+
+// Reads the same image band by band, top to bottom, never holding it whole: consume(band) gets rows
+// [band.firstRow, band.firstRow + band.height), at most bandRows of them, while the next band is being read
+// (two band buffers in all). Returns the image's description (width, height, channels, format; no pixels).
+// Throws Error like readImage, and whatever consume throws. Scanline files only: canReadInBands() says.
+Image readImageBands(const std::string& path, int bandRows,
+                     const std::function<void(const ImageView&)>& consume);
+
+// The description of the image at `path` (no pixels), and whether readImageBands can read it (a scanline
+// file; tiled and deep ones are read whole). Throws Error like readImage.
+Image describeImage(const std::string& path, bool* canReadInBands = nullptr);
 
 }  // namespace probelights

@@ -54,6 +54,14 @@ class MomentTable {
  public:
   MomentTable(const Probe& probe, int cellSize);
 
+  // The same table built band by band (grid_load.h reads a probe this way, never holding it whole): a table
+  // for a pixelWidth x pixelHeight probe; addBand() with every band of pixel rows [y0, y1) once (y0 and y1 on
+  // cell borders, or y1 the last row; `band` holds those rows: Probe::band), then finish(). Bit-identical to
+  // the one-call build.
+  MomentTable(int pixelWidth, int pixelHeight, int cellSize);
+  void addBand(const Probe& band, int y0, int y1);
+  void finish();
+
   int cellSize() const { return cellSize_; }
   int width() const { return sat_.width(); }    // in cells
   int height() const { return sat_.height(); }  // in cells
@@ -87,6 +95,8 @@ class MomentTable {
     double rgb[3], solidAngle, energy2, moment2[3];
   };
   std::unique_ptr<CellLight[]> cells_;
+  std::vector<PixelSums> rowTotals_;  // per cell row, while the table is built
+  std::vector<long long> rowLitCells_;
 };
 
 }  // namespace probelights

@@ -30,7 +30,14 @@ struct ProbeOptions {
 struct PixelReport {
   long long negativeSamples = 0;   // clamped to 0 (lossy EXR compression produces them)
   long long nonFiniteSamples = 0;  // NaN or Inf; only non-zero when NonFinitePolicy::Zero let them through
+  int firstNonFiniteX = -1, firstNonFiniteY = -1;  // the first of them in row order
   std::vector<std::string> notes;  // one line each, for the user: "auto projection: ...", "clamped ..."
+
+  // Adds another part's counts (a band below the ones already added).
+  void add(const PixelReport& below);
+  // What the counts mean under `policy`: throws Error for NaN/Inf under NonFinitePolicy::Error, else adds the
+  // notes ("read N NaN/Inf samples as 0 ...", "clamped N negative samples ...").
+  void settle(NonFinitePolicy policy);
 };
 
 class Probe {
@@ -42,8 +49,23 @@ class Probe {
 
   static Probe load(const std::string& path, const ProbeOptions& options = {});  // in probelights_io
 
-  int width() const { return view_.width; }
-  int height() const { return view_.height; }
+  // Rows [view.firstRow, view.firstRow + view.height) of a probe of `projection`'s size, for building a
+  // working grid band by band (grid_load.h): pixel() and radiance() take the whole probe's row numbers. Its
+  // report counts the band's samples and is not settled (no notes, no error): the caller settles their sum.
+  static Probe band(const ImageView& view, const Projection& projection);
+  // A probe whose pixels were not kept (grid_load.h read it band by band into its working grid): its size,
+  // projection and report. Stages that read pixels refuse it with an Error (requirePixels).
+  static Probe withoutPixels(ProjectionKind projection, int width, int height, PixelReport report);
+  bool hasPixels() const { return view_.pixels != nullptr; }
+  void requirePixels(const std::string& stage) const;
+
+  // The projection `choice` means for a width x height image (auto: lat-long for 2:1, with a note in `notes`;
+  // throws Error naming `name` otherwise).
+  static ProjectionKind resolveProjection(ProjectionChoice choice, int width, int height,
+                                          const std::string& name, std::vector<std::string>& notes);
+
+  int width() const { return projection_.width(); }
+  int height() const { return projection_.height(); }
   const Projection& projection() const { return projection_; }
   const PixelReport& report() const { return report_; }
   const ImageView& view() const { return view_; }
@@ -66,6 +88,8 @@ class Probe {
   Rgb integral() const;
 
  private:
+  Probe(ImageView view, const Projection& projection);
+  void count();  // the report's counts of the view's rows
   void validate(NonFinitePolicy nonFinite);
 
   std::shared_ptr<const Image> owned_;

@@ -37,7 +37,15 @@ class SummedAreaTable {
   // also spreads the first touch of the table's pages); (2) the running sums down each column, column blocks
   // spread over the threads. Every entry gets the same additions in the same order as a one-pass build, so
   // the table is bit-identical whatever the thread count.
-  SummedAreaTable(int width, int height, const std::function<void(int, std::span<Values>)>& rowValues);
+  using RowValues = std::function<void(int, std::span<Values>)>;
+  SummedAreaTable(int width, int height, const RowValues& rowValues);
+
+  // The same table built in parts, for rows that arrive in bands (a probe read band by band): allocate, then
+  // fillRows() every row once (pass 1, in any order), then finish() (pass 2). The result is bit-identical to
+  // the one-call build.
+  SummedAreaTable(int width, int height);
+  void fillRows(int y0, int y1, const RowValues& rowValues);
+  void finish();
 
   int width() const { return width_; }
   int height() const { return height_; }

@@ -1,0 +1,54 @@
+#include "probelights/grid_load.h"
+
+#include "probelights/error.h"
+#include "probelights/image.h"
+#include "probelights/stopwatch.h"
+
+namespace probelights {
+
+namespace {
+
+GridProbe loadWhole(const std::string& path, const ProbeOptions& options, int cellSize) {
+  Probe probe = Probe::load(path, options);
+  Stopwatch t;
+  MomentTable table(probe, cellSize);
+  const double ms = t.ms();
+  return {std::move(probe), std::move(table), ms};
+}
+
+}  // namespace
+
+GridProbe loadGrid(const std::string& path, const ProbeOptions& options, const WorkingResolution& resolution,
+                   int bandRows) {
+  bool inBands = false;
+  const Image info = describeImage(path, &inBands);
+  const int cellSize = resolution.cellSize(info.width);
+  if (cellSize == 1 || !inBands) return loadWhole(path, options, cellSize);
+
+  const std::string name = "'" + path + "'";
+  PixelReport report;
+  const ProjectionKind kind =
+      Probe::resolveProjection(options.projection, info.width, info.height, name, report.notes);
+  const Projection projection(kind, info.width, info.height);
+  MomentTable table(info.width, info.height, cellSize);
+  const int rows = ((bandRows > 0 ? bandRows : 256) + cellSize - 1) / cellSize * cellSize;
+  double tablesMs = 0;
+  readImageBands(path, rows, [&](const ImageView& band) {
+    const Probe part = Probe::band(band, projection);
+    report.add(part.report());
+    Stopwatch t;
+    table.addBand(part, band.firstRow, band.firstRow + band.height);
+    tablesMs += t.ms();
+  });
+  Stopwatch t;
+  table.finish();
+  tablesMs += t.ms();
+  try {
+    report.settle(options.nonFinite);
+  } catch (const Error& e) {
+    throw Error("probe " + name + ": " + e.what());
+  }
+  return {Probe::withoutPixels(kind, info.width, info.height, std::move(report)), std::move(table), tablesMs};
+}
+
+}  // namespace probelights
