@@ -116,7 +116,7 @@ int bakeCommand(const std::vector<std::string>& argv) {
   if (!a.outDir.empty()) return bakeLibrary(a);
   Stopwatch load;
   std::optional<GridProbe> grid;
-  if (bakesFromGridAlone(a)) grid.emplace(loadGrid(a.probe, a.probeOptions, a.bake.resolution));
+  if (bakesFromGridAlone(a)) grid.emplace(loadGrid(a.probe, a.probeOptions, a.bake));
   const Probe probe = grid ? std::move(grid->probe) : Probe::load(a.probe, a.probeOptions);
   const double loadMs = load.ms();
   const EvaluatedBake done = grid ? bakeOnGrid(probe, grid->table, grid->tablesMs, a.bake)

@@ -119,7 +119,7 @@ int bakeLibrary(const BakeArgs& a) {
       std::fflush(stderr);
     }
   };
-  forEachProbe(paths, a.probeOptions, bakeOne, gridOnly ? &a.bake.resolution : nullptr);
+  forEachProbe(paths, a.probeOptions, bakeOne, gridOnly ? &a.bake : nullptr);
   if (terminal) std::fputs("\r\033[K", stderr);
   const double seconds = wall.ms() / 1000.0;
   writeWhole(dir / "summary.json", nlohmann::json{{"probes", paths.size()},

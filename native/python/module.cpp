@@ -183,7 +183,7 @@ py::dict bakeFile(const std::string& path, const std::string& projection, const 
     Stopwatch load;
     if (bakesOnGridAlone(options, accuracy)) {
       // Read band by band straight into the working grid: the image is never held whole.
-      GridProbe grid = loadGrid(path, probeOptions, options.resolution);
+      GridProbe grid = loadGrid(path, probeOptions, options);
       probe.emplace(std::move(grid.probe));
       loadMs = load.ms();
       result = bakeOnGrid(*probe, grid.table, grid.tablesMs, options);
@@ -231,7 +231,7 @@ py::list bakeFiles(const std::vector<std::string>& inputs, const std::string& pr
       }
     };
     forEachProbe(expandProbePaths(inputs), probeOptions, bakeOne,
-                 bakesOnGridAlone(options, accuracy) ? &options.resolution : nullptr);
+                 bakesOnGridAlone(options, accuracy) ? &options : nullptr);
   }
   return out;
 }

@@ -19,7 +19,7 @@ AutoCountResult autoCount(const Probe& probe, const Evaluator& evaluator, BakeOp
   double tablesMs = 0;
   if (usesWorkingGrid(options.method)) {
     Stopwatch t;
-    table.emplace(probe, options.resolution.cellSize(probe.width()));
+    table.emplace(probe, options.resolution.cellSize(probe.width()), options.centroid);
     tablesMs = t.ms();
   }
   auto attempt = [&](int n) {

@@ -51,7 +51,7 @@ BakeResult bake(const Probe& probe, const BakeOptions& options) {
   }
 
   Stopwatch t;
-  const MomentTable table(probe, options.resolution.cellSize(probe.width()));
+  const MomentTable table(probe, options.resolution.cellSize(probe.width()), options.centroid);
   const double tablesMs = t.ms();
   result = bake(probe, table, options);
   result.timings.tablesMs = tablesMs;
@@ -83,7 +83,7 @@ BakeResult bake(const Probe& probe, const MomentTable& table, const BakeOptions&
   result.notes = partition.notes;
 
   t.restart();
-  if (table.hasCellSums()) {
+  if (table.hasCellSums() && (options.centroid == CentroidWeight::Energy || table.hasSecondMoments())) {
     // A coarse grid kept each cell's exact sums: a region's sums are those of its cells (no second image
     // pass).
     std::vector<PixelSums> sums(partition.regions.size());

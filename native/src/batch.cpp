@@ -22,7 +22,7 @@ bool isImageFile(const std::filesystem::path& p) {
   return kImages.count(ext) > 0;
 }
 
-LoadedProbe load(const std::string& path, const ProbeOptions& options, const WorkingResolution* grid) {
+LoadedProbe load(const std::string& path, const ProbeOptions& options, const BakeOptions* grid) {
   LoadedProbe item;
   item.path = path;
   Stopwatch clock;
@@ -74,7 +74,7 @@ std::vector<std::string> expandProbePaths(const std::vector<std::string>& inputs
 }
 
 void forEachProbe(const std::vector<std::string>& paths, const ProbeOptions& options,
-                  const std::function<void(LoadedProbe&)>& consume, const WorkingResolution* grid) {
+                  const std::function<void(LoadedProbe&)>& consume, const BakeOptions* grid) {
   if (paths.empty()) return;
   std::future<LoadedProbe> next = std::async(std::launch::async, load, paths[0], options, grid);
   for (std::size_t i = 0; i < paths.size(); ++i) {

@@ -8,29 +8,30 @@ namespace probelights {
 
 namespace {
 
-GridProbe loadWhole(const std::string& path, const ProbeOptions& options, int cellSize) {
+GridProbe loadWhole(const std::string& path, const ProbeOptions& options, int cellSize,
+                    CentroidWeight centroid) {
   Probe probe = Probe::load(path, options);
   Stopwatch t;
-  MomentTable table(probe, cellSize);
+  MomentTable table(probe, cellSize, centroid);
   const double ms = t.ms();
   return {std::move(probe), std::move(table), ms};
 }
 
 }  // namespace
 
-GridProbe loadGrid(const std::string& path, const ProbeOptions& options, const WorkingResolution& resolution,
+GridProbe loadGrid(const std::string& path, const ProbeOptions& options, const BakeOptions& bake,
                    int bandRows) {
   bool inBands = false;
   const Image info = describeImage(path, &inBands);
-  const int cellSize = resolution.cellSize(info.width);
-  if (cellSize == 1 || !inBands) return loadWhole(path, options, cellSize);
+  const int cellSize = bake.resolution.cellSize(info.width);
+  if (cellSize == 1 || !inBands) return loadWhole(path, options, cellSize, bake.centroid);
 
   const std::string name = "'" + path + "'";
   PixelReport report;
   const ProjectionKind kind =
       Probe::resolveProjection(options.projection, info.width, info.height, name, report.notes);
   const Projection projection(kind, info.width, info.height);
-  MomentTable table(info.width, info.height, cellSize);
+  MomentTable table(info.width, info.height, cellSize, bake.centroid);
   const int rows = ((bandRows > 0 ? bandRows : 256) + cellSize - 1) / cellSize * cellSize;
   double tablesMs = 0;
   readImageBands(path, rows, [&](const ImageView& band) {

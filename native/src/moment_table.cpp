@@ -47,21 +47,25 @@ std::string WorkingResolution::toString() const {
   return "?";
 }
 
-MomentTable::MomentTable(const Probe& probe, int cellSize)
-    : MomentTable(probe.width(), probe.height(), cellSize) {
+MomentTable::MomentTable(const Probe& probe, int cellSize, CentroidWeight centroid)
+    : MomentTable(probe.width(), probe.height(), cellSize, centroid) {
   probe.requirePixels("building the working grid");
   addBand(probe, 0, probe.height());
   finish();
 }
 
-MomentTable::MomentTable(int pixelWidth, int pixelHeight, int cellSize)
+MomentTable::MomentTable(int pixelWidth, int pixelHeight, int cellSize, CentroidWeight centroid)
     : cellSize_(cellSize), pixelWidth_(pixelWidth), pixelHeight_(pixelHeight) {
   if (cellSize < 1) throw Error("working-grid cell size must be at least 1 pixel");
   const int cellsX = (pixelWidth + cellSize - 1) / cellSize, cellsY = (pixelHeight + cellSize - 1) / cellSize;
-  // A coarse grid keeps every cell's full sums, so lights are summed from cells without reading the image
-  // again; at full resolution that would be 100 bytes a pixel, and lights re-read the pixels of their regions
+  // A coarse grid keeps every cell's sums, so lights are summed from cells without reading the image again;
+  // at full resolution that would be 32 (or 64) bytes a pixel, and lights re-read their regions' pixels
   // instead.
-  if (cellSize > 1) cells_.reset(new CellLight[static_cast<std::size_t>(cellsX) * cellsY]);
+  if (cellSize > 1) {
+    const auto n = static_cast<std::size_t>(cellsX) * cellsY;
+    cells_.reset(new CellLight[n]);
+    if (centroid == CentroidWeight::Energy2) second_.reset(new CellSecond[n]);
+  }
   sat_ = SummedAreaTable<5>(cellsX, cellsY);
   rowTotals_.assign(cellsY, PixelSums{});
   rowLitCells_.assign(cellsY, 0);
@@ -85,10 +89,9 @@ void MomentTable::addBand(const Probe& band, int y0, int y1) {
       out[cx] = {c.energy, c.moment.x, c.moment.y, c.moment.z, c.litPixels > 0 ? 1.0 : 0.0};
       total += c;
       litCells += c.litPixels > 0;
-      if (cells_) {
-        cells_[static_cast<std::size_t>(cy) * cellsX + cx] = {
-            {c.rgb[0], c.rgb[1], c.rgb[2]}, c.solidAngle, c.energy2, {c.moment2.x, c.moment2.y, c.moment2.z}};
-      }
+      const auto i = static_cast<std::size_t>(cy) * cellsX + cx;
+      if (cells_) cells_[i] = {{c.rgb[0], c.rgb[1], c.rgb[2]}, c.solidAngle};
+      if (second_) second_[i] = {c.energy2, {c.moment2.x, c.moment2.y, c.moment2.z}};
     }
     rowTotals_[cy] = total;
     rowLitCells_[cy] = litCells;
@@ -115,11 +118,14 @@ PixelSums MomentTable::cellSums(const Rect& c) const {
   s.litPixels = m.litCells;  // lit cells: all a light needs to know is that there is light
   for (int y = c.y0; y < c.y1; ++y)
     for (int x = c.x0; x < c.x1; ++x) {
-      const CellLight& cell = cells_[static_cast<std::size_t>(y) * sat_.width() + x];
+      const auto i = static_cast<std::size_t>(y) * sat_.width() + x;
+      const CellLight& cell = cells_[i];
       for (int k = 0; k < 3; ++k) s.rgb[k] += cell.rgb[k];
       s.solidAngle += cell.solidAngle;
-      s.energy2 += cell.energy2;
-      s.moment2 += Vec3{cell.moment2[0], cell.moment2[1], cell.moment2[2]};
+      if (second_) {
+        s.energy2 += second_[i].energy2;
+        s.moment2 += Vec3{second_[i].moment2[0], second_[i].moment2[1], second_[i].moment2[2]};
+      }
     }
   return s;
 }

@@ -68,6 +68,12 @@ void expectSameBake(const BakeResult& whole, const BakeResult& banded, const std
 
 BakeResult bakeOnGrid(const GridProbe& g, BakeOptions o) { return bake(g.probe, g.table, o); }
 
+BakeOptions at(WorkingResolution resolution) {
+  BakeOptions o;
+  o.resolution = resolution;
+  return o;
+}
+
 TEST(GridLoad, BandByBandGivesTheLightsOfAWholeLoadWhateverTheBandHeight) {
   const std::string path = PROBELIGHTS_BUNDLED_PROBE;  // 1024 x 512 .hdr
   const Probe whole = Probe::load(path);
@@ -77,11 +83,12 @@ TEST(GridLoad, BandByBandGivesTheLightsOfAWholeLoadWhateverTheBandHeight) {
       o.method = method;
       o.lights = 37;
       o.splitAtHorizon = horizon;
-      o.resolution = WorkingResolution{WorkingResolution::Mode::Width, 256};  // cells of 4 x 4 pixels
+      o.centroid = horizon ? CentroidWeight::Energy2 : CentroidWeight::Energy;  // both cell sums
+      o.resolution = WorkingResolution{WorkingResolution::Mode::Width, 256};    // cells of 4 x 4 pixels
       const BakeResult reference = bake(whole, o);
       // One cell row per band, a few, bands that do not divide the height, the default, one band for all.
       for (int rows : {4, 24, 100, 0, 4096}) {
-        const GridProbe g = loadGrid(path, {}, o.resolution, rows);
+        const GridProbe g = loadGrid(path, {}, o, rows);
         EXPECT_FALSE(g.probe.hasPixels());
         EXPECT_EQ(g.probe.width(), 1024);
         EXPECT_EQ(g.probe.height(), 512);
@@ -103,7 +110,7 @@ TEST(GridLoad, MirrorBallGreyAndAlphaImagesBandByBand) {
     const fs::path file = dir / ("ball" + std::to_string(channels) + ".exr");
     writeImage(file, S, S, channels, sky(S, S, channels));
     const BakeResult reference = bake(Probe::load(file.string(), ball), o);
-    expectSameBake(reference, bakeOnGrid(loadGrid(file.string(), ball, o.resolution, 10), o),
+    expectSameBake(reference, bakeOnGrid(loadGrid(file.string(), ball, o, 10), o),
                    std::to_string(channels) + " channels");
   }
   fs::remove_all(dir);
@@ -127,7 +134,7 @@ TEST(GridLoad, NonFiniteSamplesGiveTheWholeLoadsErrorOrReport) {
     wholeError = e.what();
   }
   try {
-    loadGrid(file.string(), {}, res, 8);
+    loadGrid(file.string(), {}, at(res), 8);
   } catch (const Error& e) {
     bandError = e.what();
   }
@@ -137,7 +144,7 @@ TEST(GridLoad, NonFiniteSamplesGiveTheWholeLoadsErrorOrReport) {
   ProbeOptions zero;
   zero.nonFinite = NonFinitePolicy::Zero;
   const Probe whole = Probe::load(file.string(), zero);
-  const GridProbe g = loadGrid(file.string(), zero, res, 8);
+  const GridProbe g = loadGrid(file.string(), zero, at(res), 8);
   EXPECT_EQ(g.probe.report().notes, whole.report().notes);
   EXPECT_EQ(g.probe.report().nonFiniteSamples, 2);
   EXPECT_EQ(g.probe.report().negativeSamples, 1);
@@ -148,7 +155,7 @@ TEST(GridLoad, NonFiniteSamplesGiveTheWholeLoadsErrorOrReport) {
 
   std::string missing;
   try {
-    loadGrid((dir / "nothing.exr").string(), {}, res);
+    loadGrid((dir / "nothing.exr").string(), {}, at(res));
   } catch (const Error& e) {
     missing = e.what();
   }
@@ -164,13 +171,13 @@ TEST(GridLoad, FullResolutionAndTiledFilesAreLoadedWhole) {
   BakeOptions o;
   o.lights = 16;
   o.resolution = WorkingResolution{WorkingResolution::Mode::Width, 32};
-  const GridProbe tiled = loadGrid((dir / "tiled.exr").string(), {}, o.resolution, 8);
+  const GridProbe tiled = loadGrid((dir / "tiled.exr").string(), {}, o, 8);
   EXPECT_TRUE(tiled.probe.hasPixels());
-  const GridProbe lines = loadGrid((dir / "lines.exr").string(), {}, o.resolution, 8);
+  const GridProbe lines = loadGrid((dir / "lines.exr").string(), {}, o, 8);
   EXPECT_FALSE(lines.probe.hasPixels());
   expectSameBake(bakeOnGrid(tiled, o), bakeOnGrid(lines, o), "tiled vs scanlines");
   o.resolution = WorkingResolution{WorkingResolution::Mode::Full, 0};
-  const GridProbe full = loadGrid((dir / "lines.exr").string(), {}, o.resolution, 8);
+  const GridProbe full = loadGrid((dir / "lines.exr").string(), {}, o, 8);
   EXPECT_TRUE(full.probe.hasPixels());  // cell size 1: lights re-read their regions' pixels
   expectSameBake(bake(Probe::load((dir / "lines.exr").string()), o), bakeOnGrid(full, o), "full");
   fs::remove_all(dir);
@@ -178,7 +185,7 @@ TEST(GridLoad, FullResolutionAndTiledFilesAreLoadedWhole) {
 
 TEST(GridLoad, StagesThatReadPixelsRefuseAProbeWithoutThem) {
   const WorkingResolution res{WorkingResolution::Mode::Width, 256};
-  const GridProbe g = loadGrid(PROBELIGHTS_BUNDLED_PROBE, {}, res);
+  const GridProbe g = loadGrid(PROBELIGHTS_BUNDLED_PROBE, {}, at(res));
   BakeOptions o;
   o.resolution = res;
   const BakeResult r = bake(g.probe, g.table, o);

@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "probelights/bake.h"
 #include "probelights/moment_table.h"
 #include "probelights/probe.h"
 
@@ -22,9 +23,10 @@ struct GridProbe {
 };
 
 // Throws Error like Probe::load: a missing or unreadable file, NaN/Inf under NonFinitePolicy::Error (after
-// reading it all, so the count is the file's), an unknown projection. bandRows: rows per band, rounded up to
-// whole cells; 0 = 256 (the chunk height of the largest OpenEXR compression, DWAB).
-GridProbe loadGrid(const std::string& path, const ProbeOptions& options, const WorkingResolution& resolution,
+// reading it all, so the count is the file's), an unknown projection. The grid is the one bake(probe, table,
+// `bake`) cuts on (its resolution and centroid weighting). bandRows: rows per band, rounded up to whole
+// cells; 0 = 256 (the chunk height of the largest OpenEXR compression, DWAB).
+GridProbe loadGrid(const std::string& path, const ProbeOptions& options, const BakeOptions& bake,
                    int bandRows = 0);
 
 }  // namespace probelights

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "probelights/geometry.h"
+#include "probelights/lights.h"
 #include "probelights/pixel_sums.h"
 #include "probelights/probe.h"
 #include "probelights/summed_area_table.h"
@@ -52,13 +53,16 @@ struct WorkingResolution {
 
 class MomentTable {
  public:
-  MomentTable(const Probe& probe, int cellSize);
+  // `centroid`: the lights' centroid weighting the cells' sums serve (CentroidWeight::Energy2 also keeps each
+  // cell's Y^2-weighted sums: 32 more bytes a cell).
+  MomentTable(const Probe& probe, int cellSize, CentroidWeight centroid = CentroidWeight::Energy);
 
   // The same table built band by band (grid_load.h reads a probe this way, never holding it whole): a table
   // for a pixelWidth x pixelHeight probe; addBand() with every band of pixel rows [y0, y1) once (y0 and y1 on
   // cell borders, or y1 the last row; `band` holds those rows: Probe::band), then finish(). Bit-identical to
   // the one-call build.
-  MomentTable(int pixelWidth, int pixelHeight, int cellSize);
+  MomentTable(int pixelWidth, int pixelHeight, int cellSize,
+              CentroidWeight centroid = CentroidWeight::Energy);
   void addBand(const Probe& band, int y0, int y1);
   void finish();
 
@@ -77,6 +81,8 @@ class MomentTable {
   // Full sums over a rectangle of cells of a coarse grid (cellSize > 1; see hasCellSums()): energy and moment
   // from the tables, the other light channels from the cells it kept.
   bool hasCellSums() const { return cells_ != nullptr; }
+  // Whether the cell sums hold energy2 and moment2 (built for CentroidWeight::Energy2; else they are 0).
+  bool hasSecondMoments() const { return second_ != nullptr; }
   PixelSums cellSums(const Rect& cells) const;
 
   // Exact probe integral per channel and total energy, accumulated while the table was built.
@@ -90,11 +96,16 @@ class MomentTable {
   Rgb integral_{};
   double totalEnergy_ = 0;
   long long litCells_ = 0;
-  // What a light needs beyond the tables' channels, per cell of a coarse grid (uninitialized until built).
+  // What a light needs beyond the tables' channels, per cell of a coarse grid (uninitialized until built),
+  // and the second moments when asked for.
   struct CellLight {
-    double rgb[3], solidAngle, energy2, moment2[3];
+    double rgb[3], solidAngle;
+  };
+  struct CellSecond {
+    double energy2, moment2[3];
   };
   std::unique_ptr<CellLight[]> cells_;
+  std::unique_ptr<CellSecond[]> second_;
   std::vector<PixelSums> rowTotals_;  // per cell row, while the table is built
   std::vector<long long> rowLitCells_;
 };
