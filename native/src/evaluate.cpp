@@ -100,28 +100,57 @@ bool Evaluator::visible(const Vec3& p, const Vec3& d) {
   return !(b < 0 && b * b - cc > 0);
 }
 
-Evaluator::Evaluator(const Probe& probe, Effects effects, EvaluatorOptions options) : effects_(effects) {
-  probe.requirePixels("evaluating lights");
+Evaluator::Evaluator(const Probe& probe, Effects effects, EvaluatorOptions options)
+    : Evaluator(probe, nullptr, effects, options) {}
+
+Evaluator::Evaluator(const Probe& probe, const MomentTable& grid, Effects effects, EvaluatorOptions options)
+    : Evaluator(probe, &grid, effects, options) {}
+
+void Evaluator::addSample(const Rgb& rgb, const Vec3& moment) {
+  if (rgb[0] <= 0 && rgb[1] <= 0 && rgb[2] <= 0) return;
+  const double len = moment.length();
+  directions_.push_back(len > 0 ? (1.0 / len) * moment : Vec3{0, 0, 1});
+  radiance_.push_back(rgb);
+}
+
+Evaluator::Evaluator(const Probe& probe, const MomentTable* grid, Effects effects, EvaluatorOptions options)
+    : effects_(effects) {
   // Probe samples: pixels, or cells of whole pixels for probes wider than options.maxWidth.
   const int maxWidth = std::max(1, options.maxWidth);
   const int cell = std::max(1, (probe.width() + maxWidth - 1) / maxWidth);
   const int cw = (probe.width() + cell - 1) / cell, ch = (probe.height() + cell - 1) / cell;
-  parallelReduce(
-      ch, 0,
-      [&](std::int64_t y) {
-        std::vector<PixelSums> row(cw);
-        accumulateRows(probe, static_cast<int>(y) * cell,
-                       std::min(probe.height(), static_cast<int>(y + 1) * cell), 0, probe.width(), cell, row);
-        return row;
-      },
-      [&](int&, const std::vector<PixelSums>& row, std::int64_t) {
-        for (const PixelSums& s : row) {
-          if (s.rgb[0] <= 0 && s.rgb[1] <= 0 && s.rgb[2] <= 0) continue;
-          const double len = s.moment.length();
-          directions_.push_back(len > 0 ? (1.0 / len) * s.moment : Vec3{0, 0, 1});
-          radiance_.push_back(s.rgb);
-        }
-      });
+  if (grid && grid->hasCellSums() && cell % grid->cellSize() == 0) {
+    // Each sample is a block of k x k cells of the grid: rgb from the cells' sums, the moment from its table.
+    const int k = cell / grid->cellSize();
+    parallelReduce(
+        ch, 0,
+        [&](std::int64_t y) {
+          std::vector<std::pair<Rgb, Vec3>> row(cw);
+          for (int x = 0; x < cw; ++x) {
+            const Rect cells{x * k, static_cast<int>(y) * k, std::min(grid->width(), (x + 1) * k),
+                             std::min(grid->height(), static_cast<int>(y + 1) * k)};
+            row[x] = {grid->cellSums(cells).rgb, grid->moments(cells).moment};
+          }
+          return row;
+        },
+        [&](int&, const std::vector<std::pair<Rgb, Vec3>>& row, std::int64_t) {
+          for (const auto& [rgb, moment] : row) addSample(rgb, moment);
+        });
+  } else {
+    probe.requirePixels("evaluating lights");
+    parallelReduce(
+        ch, 0,
+        [&](std::int64_t y) {
+          std::vector<PixelSums> row(cw);
+          accumulateRows(probe, static_cast<int>(y) * cell,
+                         std::min(probe.height(), static_cast<int>(y + 1) * cell), 0, probe.width(), cell,
+                         row);
+          return row;
+        },
+        [&](int&, const std::vector<PixelSums>& row, std::int64_t) {
+          for (const PixelSums& s : row) addSample(s.rgb, s.moment);
+        });
+  }
   normals_ = fibonacciSphere(256);
   if (effects & kDiffuse) {
     diffuse_ = truthAt(directions_, radiance_, normals_.size(),

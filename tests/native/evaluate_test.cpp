@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "probelights/error.h"
+#include "probelights/moment_table.h"
 #include "test_probes.h"
 
 namespace probelights {
@@ -75,6 +76,38 @@ TEST(Evaluator, OneLightPerPixelIsExactAndFewLightsAreNot) {
   auto few = ev.evaluate(bake(t.probe, o).lights);
   EXPECT_GT(few.diffuse, 1e-3);
   EXPECT_TRUE(std::isnan(Evaluator(t.probe, kDiffuse).evaluate(all.lights).shadow));  // only what was asked
+}
+
+TEST(Evaluator, SamplesFromTheWorkingGridEqualSamplesFromThePixels) {
+  // A grid of 4 px cells serves samples of 16 px (a 512-wide estimate of a 2048-wide probe); a grid that does
+  // not tile them (cells of 3 px) or has no cell sums (full resolution) leaves the evaluator on the pixels.
+  const int W = 2048, H = 1024;
+  auto t = testing::makeProbe(W, H, ProjectionKind::LatLong, [](int x, int y) {
+    const bool sun = std::abs(x - 700) < 3 && std::abs(y - 200) < 3;
+    return sun ? Rgb{4e4, 3.8e4, 3.5e4} : Rgb{0.2 + 0.1 * (x % 13), 0.3 + 0.01 * (y % 29), 0.5};
+  });
+  const Effects all = kDiffuse | kShadow | kGlossy;
+  const EvaluatorOptions options{512, true};
+  const Evaluator pixels(t.probe, all, options);
+  BakeOptions o;
+  o.lights = 24;
+  const auto lights = bake(t.probe, o).lights;
+  for (int cellSize : {4, 3, 1}) {
+    const MomentTable grid(t.probe, cellSize);
+    const Evaluator cells(t.probe, grid, all, options);
+    auto near = [](const std::vector<Rgb>& a, const std::vector<Rgb>& b) {
+      ASSERT_EQ(a.size(), b.size());
+      for (std::size_t i = 0; i < a.size(); ++i)
+        for (int k = 0; k < 3; ++k) EXPECT_NEAR(a[i][k], b[i][k], 1e-12 * std::abs(b[i][k]) + 1e-15);
+    };
+    near(cells.diffuseTruth(), pixels.diffuseTruth());
+    near(cells.shadowTruth(), pixels.shadowTruth());
+    near(cells.fitTruth(), pixels.fitTruth());
+    const EffectErrors a = cells.evaluate(lights), b = pixels.evaluate(lights);
+    EXPECT_NEAR(a.diffuse, b.diffuse, 1e-12);
+    EXPECT_NEAR(a.shadow, b.shadow, 1e-12);
+    EXPECT_NEAR(a.glossy, b.glossy, 1e-12);
+  }
 }
 
 TEST(Effects, ParseAndPrint) {

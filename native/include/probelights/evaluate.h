@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "probelights/lights.h"
+#include "probelights/moment_table.h"
 #include "probelights/probe.h"
 
 namespace probelights {
@@ -59,6 +60,10 @@ struct EvaluatorOptions {
 class Evaluator {
  public:
   Evaluator(const Probe& probe, Effects effects, EvaluatorOptions options = {});
+  // The same with the probe's samples summed from the cells of its working grid when they tile the samples'
+  // cells (a coarse grid whose cell size divides theirs: at 8K, cells of 4 px for samples of 16), instead of
+  // another pass over the pixels; else from the pixels. The samples' sums are the same up to rounding.
+  Evaluator(const Probe& probe, const MomentTable& grid, Effects effects, EvaluatorOptions options = {});
 
   Effects effects() const { return effects_; }
   EffectErrors evaluate(const std::vector<Light>& lights) const;
@@ -83,6 +88,9 @@ class Evaluator {
   static constexpr int kGlossyExponents[2] = {8, 64};
 
  private:
+  Evaluator(const Probe& probe, const MomentTable* grid, Effects effects, EvaluatorOptions options);
+  void addSample(const Rgb& rgb, const Vec3& moment);
+
   Effects effects_;
   std::vector<Vec3> directions_;  // probe samples: unit directions
   std::vector<Rgb> radiance_;     // and their L dOmega
