@@ -5,7 +5,7 @@
 set -euo pipefail
 packages=(cmake g++ make pkg-config libopenimageio-dev openimageio-tools nlohmann-json3-dev python3-dev python3-numpy python3-pip
           python3-venv
-          libbenchmark-dev fonts-dejavu-core)
+          libbenchmark-dev libopenexr-dev fonts-dejavu-core)
 if [[ "${1:-}" == "--test" ]]; then
   packages+=(libgtest-dev googletest python3-pytest blender xvfb xauth libegl1 libgl1-mesa-dri clang-format)
 fi
