@@ -8,6 +8,7 @@ import tempfile
 import bpy
 import numpy as np
 
+from . import native
 from .conversion import srgb_to_linear
 from .errors import ProbeError
 
@@ -49,6 +50,9 @@ def read_buffer(size):
     else:
         _kept.clear()  # the old buffer goes first: never two of them alive for this module
         buf = _without_huge_pages(lambda: np.empty(size, dtype=np.float32))
+        # Blender's foreach_get fills it on one thread; the kernel maps the fresh pages in parallel first (8K:
+        # 537 MB, 206 ms on one thread, 112 ms on two).
+        native.module().touch_pages(buf)
         _kept.append(buf)
     if bpy.app.timers.is_registered(_release):
         bpy.app.timers.unregister(_release)

@@ -16,6 +16,7 @@
 #endif
 #include "probelights/error.h"
 #include "probelights/evaluate.h"
+#include "probelights/memory.h"
 #include "probelights/probe.h"
 #include "probelights/result_layout.h"
 #include "probelights/sh_sampler.h"
@@ -360,6 +361,17 @@ PYBIND11_MODULE(_probelights, m) {
       py::arg("samples") = 1024, py::arg("depth") = 8, py::arg("seed") = 1, py::arg("projection") = "latlong",
       py::arg("nonfinite") = "error",
       "(directions (N,3), pdf (N,)) from the SH importance sampler of the probe's luminance (Berger 2011).");
+  m.def(
+      "touch_pages",
+      [](py::array_t<float, py::array::c_style> buffer) {
+        py::buffer_info info = buffer.request(true);
+        py::gil_scoped_release release;
+        touchPages(info.ptr, static_cast<std::size_t>(info.size) * sizeof(float));
+      },
+      py::arg("buffer"),
+      "Map a new float32 buffer's memory from all threads (one write of 0 per page), before a "
+      "single-threaded "
+      "writer fills it: the kernel's first-touch cost is paid in parallel.");
   m.attr("__version__") = PROBELIGHTS_VERSION;
   // "full": reads files with OpenImageIO (bake_file); "pixels": the portable build inside the Blender add-on,
   // which links nothing but the C library and takes pixels only.

@@ -103,6 +103,13 @@ def test_bake_file_reads_band_by_band_into_a_coarse_grid(bundled_probe):
         assert np.array_equal(r["total_rgb"], whole["total_rgb"])
 
 
+def test_touch_pages_maps_a_fresh_buffer_that_stays_usable():
+    buf = np.empty(3 * 1024 * 1024 + 5, np.float32)  # not a whole number of pages
+    assert pl.touch_pages(buf) is None
+    buf[:] = 2.0
+    assert float(buf.sum()) == 2.0 * buf.size
+
+
 def key_paths(value, prefix=""):
     """Every key path of a result: nested objects by name, a table (the JSON's list of rows, the module's dict
     of columns) by its columns."""
