@@ -18,7 +18,7 @@ bl_info = {
 
 import bpy  # noqa: E402
 
-from . import light_objects, operators, properties, ui, world_image  # noqa: E402
+from . import light_objects, native, operators, properties, ui, world_image  # noqa: E402
 
 classes = properties.classes + operators.classes + ui.classes
 
@@ -32,6 +32,7 @@ def register():
 
 def unregister():
     world_image.unregister()
+    native.unregister()
     light_objects.unregister()
     properties.unregister()
     for cls in reversed(classes):

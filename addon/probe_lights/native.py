@@ -15,6 +15,7 @@ from .errors import ProbeError
 
 _module = None
 _failure = None  # the ProbeError of a failed import, kept so a panel's redraw does not retry it
+KEEP_SECONDS = 60.0  # how long the core keeps its table buffers for the next bake (Blender's timers: with a window)
 
 
 def built_for():
@@ -63,6 +64,29 @@ def _call(name, *args, **kwargs):
         return getattr(m, name)(*args, **kwargs)
     except m.Error as e:
         raise ProbeError(str(e)) from None
+    finally:
+        _keep_buffers_for_a_while()
+
+
+def _release_buffers():
+    if _module is not None:
+        _module.release_memory()  # the table buffers the core keeps for the next bake (native/.../memory.h)
+
+
+def _keep_buffers_for_a_while():
+    """The core keeps its last two tables' buffers so the next bake does not map fresh memory (2K: 84 MB, 37 ms);
+    they are given back KEEP_SECONDS after the last bake."""
+    import bpy
+    if bpy.app.timers.is_registered(_release_buffers):
+        bpy.app.timers.unregister(_release_buffers)
+    bpy.app.timers.register(_release_buffers, first_interval=KEEP_SECONDS)
+
+
+def unregister():
+    import bpy
+    if bpy.app.timers.is_registered(_release_buffers):
+        bpy.app.timers.unregister(_release_buffers)
+    _release_buffers()
 
 
 def bake(pixels, **options):

@@ -372,6 +372,11 @@ PYBIND11_MODULE(_probelights, m) {
       "Map a new float32 buffer's memory from all threads (one write of 0 per page), before a "
       "single-threaded "
       "writer fills it: the kernel's first-touch cost is paid in parallel.");
+  m.def(
+      "release_memory", [] { releaseKeptBuffers(); },
+      "Give back the table buffers kept for the next bake (memory.h: up to two, e.g. 84 MB each for 2K "
+      "probes "
+      "at full resolution).");
   m.attr("__version__") = PROBELIGHTS_VERSION;
   // "full": reads files with OpenImageIO (bake_file); "pixels": the portable build inside the Blender add-on,
   // which links nothing but the C library and takes pixels only.

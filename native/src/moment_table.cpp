@@ -63,8 +63,8 @@ MomentTable::MomentTable(int pixelWidth, int pixelHeight, int cellSize, Centroid
   // instead.
   if (cellSize > 1) {
     const auto n = static_cast<std::size_t>(cellsX) * cellsY;
-    cells_.reset(new CellLight[n]);
-    if (centroid == CentroidWeight::Energy2) second_.reset(new CellSecond[n]);
+    cells_ = keptArray<CellLight>(n);
+    if (centroid == CentroidWeight::Energy2) second_ = keptArray<CellSecond>(n);
   }
   sat_ = SummedAreaTable<5>(cellsX, cellsY);
   rowTotals_.assign(cellsY, PixelSums{});
@@ -76,6 +76,10 @@ void MomentTable::addBand(const Probe& band, int y0, int y1) {
   if (y0 % cellSize != 0 || (y1 % cellSize != 0 && y1 != H) || y0 >= y1)
     throw Error("a band of the working grid must cover whole cell rows");
   using Values = SummedAreaTable<5>::Values;
+  if (cellSize == 1 && band.projection().kind() == ProjectionKind::LatLong) {
+    addLatLongPixels(band, y0, y1);
+    return;
+  }
   // Each cell row is summed by one thread in a fixed order (the table is bit-identical whatever the thread
   // count).
   sat_.fillRows(y0 / cellSize, (y1 + cellSize - 1) / cellSize, [&](int cy, std::span<Values> out) {
@@ -95,6 +99,43 @@ void MomentTable::addBand(const Probe& band, int y0, int y1) {
     }
     rowTotals_[cy] = total;
     rowLitCells_[cy] = litCells;
+  });
+}
+
+void MomentTable::addLatLongPixels(const Probe& band, int y0, int y1) {
+  // Full resolution, lat-long: each cell is one pixel, so its five table values are written straight from the
+  // pixel with the same operations, in the same order, as accumulateRows would sum them into a cell of one
+  // (bit-identical), without its per-cell sums of everything a light needs (lights re-read their pixels).
+  const ImageView& view = band.view();
+  const std::ptrdiff_t step = view.pixelStep();
+  const bool grey = view.channels < 3;
+  using Values = SummedAreaTable<5>::Values;
+  sat_.fillRows(y0, y1, [&](int y, std::span<Values> out) {
+    const auto row = band.projection().latLongRow(y);
+    const double dw = row.solidAngle, dwCos = dw * row.cosEl, dwSin = dw * row.sinEl;
+    const float* p = view.pixel(0, y);
+    double r = 0, g = 0, b = 0, energy = 0;
+    long long lit = 0;
+    for (int x = 0; x < pixelWidth_; ++x, p += step) {
+      const double R = Probe::sanitize(p[0]), G = grey ? R : Probe::sanitize(p[1]),
+                   B = grey ? R : Probe::sanitize(p[2]);
+      const double Y = luminance(R, G, B);
+      double sY = 0, sYc = 0, sYs = 0;
+      sY += Y, sYc += Y * row.cosPhi[x], sYs += Y * row.sinPhi[x];
+      double e = 0, mx = 0, my = 0, mz = 0;
+      e += sY * dw, mx += dwCos * sYc, my += dwCos * sYs, mz += dwSin * sY;
+      out[x] = {e, mx, my, mz, Y > 0 ? 1.0 : 0.0};
+      double cr = 0, cg = 0, cb = 0, sr = 0, sg = 0, sb = 0;
+      sr += R, sg += G, sb += B;
+      cr += sr * dw, cg += sg * dw, cb += sb * dw;
+      r += cr, g += cg, b += cb, energy += e;
+      lit += Y > 0;
+    }
+    PixelSums total;
+    total.rgb = {r, g, b};
+    total.energy = energy;
+    rowTotals_[y] = total;
+    rowLitCells_[y] = lit;
   });
 }
 

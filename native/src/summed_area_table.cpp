@@ -17,8 +17,8 @@ template <int K>
 SummedAreaTable<K>::SummedAreaTable(int width, int height)
     : width_(width),
       height_(height),
-      table_(new double[static_cast<std::size_t>(width + 1) * (height + 1) *
-                        K]) {  // not zero-filled: written once
+      table_(keptArray<double>(static_cast<std::size_t>(width + 1) * (height + 1) *
+                               K)) {  // not zero-filled: written once
   std::fill_n(entry(0, 0), (width + 1) * K, 0.0);
 }
 

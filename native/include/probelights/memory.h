@@ -1,8 +1,9 @@
 // Fresh memory: the first write to each page of a new allocation makes the kernel map it (~0.4 ms per MB on
-// one thread here), which for big pixel buffers costs as much as reading the image.
+// one thread here), which for big pixel buffers and tables costs as much as reading the image.
 #pragma once
 
 #include <cstddef>
+#include <memory>
 
 namespace probelights {
 
@@ -11,5 +12,28 @@ namespace probelights {
 // thread is about to fill (Blender's foreach_get fills the add-on's read buffer); its contents are undefined
 // afterwards, as before.
 void touchPages(void* memory, std::size_t bytes);
+
+// Buffers for big tables (summed-area tables, a grid's cell sums), kept after use for the next table that
+// fits (the last two given back, each used for a table of at least half its size), so bakes in one process
+// (the add-on's clicks, the tradeoff, a library) do not pay the kernel's first touch again: a 2048 x 1024
+// full-resolution table is 84 MB, 37 ms of fresh memory. Their contents are undefined when taken.
+// releaseKeptBuffers() gives them back (the add-on calls it once it has not baked for a minute).
+struct KeptBufferDeleter {
+  std::size_t capacity = 0;
+  void operator()(void* memory) const;
+};
+template <class T>
+using KeptArray = std::unique_ptr<T[], KeptBufferDeleter>;
+
+void* takeBuffer(std::size_t bytes, std::size_t* capacity);
+void releaseKeptBuffers();
+
+// An array of n trivial T (doubles, plain structs of doubles) in a kept buffer.
+template <class T>
+KeptArray<T> keptArray(std::size_t n) {
+  std::size_t capacity = 0;
+  void* memory = takeBuffer(n * sizeof(T), &capacity);
+  return KeptArray<T>(static_cast<T*>(memory), KeptBufferDeleter{capacity});
+}
 
 }  // namespace probelights

@@ -91,6 +91,8 @@ class MomentTable {
   long long litCells() const { return litCells_; }
 
  private:
+  void addLatLongPixels(const Probe& band, int y0, int y1);
+
   int cellSize_, pixelWidth_, pixelHeight_;
   SummedAreaTable<5> sat_;
   Rgb integral_{};
@@ -104,8 +106,8 @@ class MomentTable {
   struct CellSecond {
     double energy2, moment2[3];
   };
-  std::unique_ptr<CellLight[]> cells_;
-  std::unique_ptr<CellSecond[]> second_;
+  KeptArray<CellLight> cells_;  // reused across tables in a process (memory.h)
+  KeptArray<CellSecond> second_;
   std::vector<PixelSums> rowTotals_;  // per cell row, while the table is built
   std::vector<long long> rowLitCells_;
 };

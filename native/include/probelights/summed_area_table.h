@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "probelights/geometry.h"
+#include "probelights/memory.h"
 
 namespace probelights {
 
@@ -69,7 +70,7 @@ class SummedAreaTable {
   double* entry(int x, int y) { return table_.get() + (static_cast<std::size_t>(y) * (width_ + 1) + x) * K; }
 
   int width_ = 0, height_ = 0;
-  std::unique_ptr<double[]> table_;
+  KeptArray<double> table_;  // reused across tables in a process (memory.h)
 };
 
 }  // namespace probelights
