@@ -3,6 +3,7 @@
 #include <glob.h>
 
 #include <algorithm>
+#include <deque>
 #include <filesystem>
 #include <future>
 #include <set>
@@ -75,11 +76,21 @@ std::vector<std::string> expandProbePaths(const std::vector<std::string>& inputs
 
 void forEachProbe(const std::vector<std::string>& paths, const ProbeOptions& options,
                   const std::function<void(LoadedProbe&)>& consume, const BakeOptions* grid) {
-  if (paths.empty()) return;
-  std::future<LoadedProbe> next = std::async(std::launch::async, load, paths[0], options, grid);
-  for (std::size_t i = 0; i < paths.size(); ++i) {
-    LoadedProbe current = next.get();
-    if (i + 1 < paths.size()) next = std::async(std::launch::async, load, paths[i + 1], options, grid);
+  // Loads run ahead of the bakes on their own threads: one probe ahead, or two while the probes are small
+  // (a serial decoder such as Radiance's RLE keeps one core busy per file, and a 1K bake is shorter than its
+  // load: 100 1K .hdr probes, 64 lights, took 1.65 s with one load ahead, 1.33 s with two (as with three: all
+  // cores busy); at 8K a second whole image
+  // in memory is not worth it).
+  constexpr int kSmallWidth = 2048;
+  std::deque<std::future<LoadedProbe>> ahead;
+  std::size_t next = 0;
+  auto launch = [&] { ahead.push_back(std::async(std::launch::async, load, paths[next++], options, grid)); };
+  launch();
+  while (!ahead.empty()) {
+    LoadedProbe current = ahead.front().get();
+    ahead.pop_front();
+    const std::size_t depth = current.probe && current.probe->width() <= kSmallWidth ? 2 : 1;
+    while (ahead.size() < depth && next < paths.size()) launch();
     consume(current);
   }
 }
