@@ -78,9 +78,8 @@ void forEachProbe(const std::vector<std::string>& paths, const ProbeOptions& opt
                   const std::function<void(LoadedProbe&)>& consume, const BakeOptions* grid) {
   // Loads run ahead of the bakes on their own threads: one probe ahead, or two while the probes are small
   // (a serial decoder such as Radiance's RLE keeps one core busy per file, and a 1K bake is shorter than its
-  // load: 100 1K .hdr probes, 64 lights, took 1.65 s with one load ahead, 1.33 s with two (as with three: all
-  // cores busy); at 8K a second whole image
-  // in memory is not worth it).
+  // load: 100 1K .hdr probes, 64 lights, took 1.65 s with one load ahead, 1.33 s with two, as with three: all
+  // cores busy). At 8K a second whole image in memory is not worth it.
   constexpr int kSmallWidth = 2048;
   std::deque<std::future<LoadedProbe>> ahead;
   std::size_t next = 0;

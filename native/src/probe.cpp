@@ -73,6 +73,8 @@ ProjectionKind Probe::resolveProjection(ProjectionChoice choice, int width, int 
 
 Probe::Probe(ImageView view, ProjectionKind projection, NonFinitePolicy nonFinite)
     : view_(view), projection_((checkShape(view, "buffer"), projection), view.width, view.height) {
+  if (view.firstRow != 0)
+    throw Error("probe buffer: a band of a taller image (firstRow) goes to Probe::band");
   validate(nonFinite);
 }
 

@@ -161,6 +161,9 @@ TEST(Probe, BadInputsOneLineErrors) {
   expectError([&] { Probe p(ImageView{nullptr, 0, 0, 3}, ProjectionKind::LatLong); });
   std::vector<float> px(3, 1.0f);
   expectError([&] { Probe p(ImageView{px.data(), 1, 1, 0}, ProjectionKind::LatLong); });
+  ImageView band{px.data(), 1, 1, 3};
+  band.firstRow = 4;  // a band belongs to Probe::band, never to a whole probe
+  expectError([&] { Probe p(band, ProjectionKind::LatLong); });
   fs::remove_all(dir);
 }
 
