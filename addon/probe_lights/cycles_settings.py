@@ -9,6 +9,7 @@ and put back by Restore world (when no baked world of the scene is left).
 
 import bpy
 
+from .remembered import put_back, set_remembering
 from .render_cost import measured_version
 
 BEFORE_KEY = "probe_lights_cycles_before"  # on the scene: the settings the offer replaced
@@ -73,23 +74,11 @@ def noise_note(scene, lamps):
 def apply(scene):
     """Sets what the lamps need, remembering what it replaced (once: a second click keeps the first values)."""
     wanted = _wanted(scene)
-    before = dict(scene.get(BEFORE_KEY, {}))
-    for name, value in wanted.items():
-        before.setdefault(name, getattr(scene.cycles, name))
-        setattr(scene.cycles, name, value)
-    if before:
-        scene[BEFORE_KEY] = before
+    set_remembering(scene, BEFORE_KEY, scene.cycles, wanted)
     return sorted(wanted)
 
 
 def restore(scene):
     """Puts back what apply() replaced. Returns the names restored."""
-    before = scene.get(BEFORE_KEY)
-    if not before:
-        return []
-    names = []
-    for name, value in before.to_dict().items() if hasattr(before, "to_dict") else before.items():
-        setattr(scene.cycles, name, bool(value) if name == "use_light_tree" else float(value))
-        names.append(name)
-    del scene[BEFORE_KEY]
-    return names
+    return put_back(scene, BEFORE_KEY, scene.cycles,
+                    lambda name, value: bool(value) if name == "use_light_tree" else float(value))

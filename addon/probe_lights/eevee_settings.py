@@ -13,6 +13,8 @@ the scene and put back by Restore world.
 
 import bpy
 
+from .remembered import put_back, set_remembering
+
 BEFORE_KEY = "probe_lights_eevee_before"  # on the scene: the settings the offer replaced
 
 # Pages one sun needs, by the scene's shadow resolution scale (64 suns, Blender 4.5.15 and 5.2.3 alike:
@@ -74,25 +76,14 @@ def apply(scene, suns):
     if not _eevee_next(scene):
         return {}
     wanted = _wanted(scene, suns)
-    before = dict(scene.get(BEFORE_KEY, {}))
-    for name, value in wanted.items():
-        before.setdefault(name, getattr(scene.eevee, name))
-        setattr(scene.eevee, name, value)
-    if before:
-        scene[BEFORE_KEY] = before
+    set_remembering(scene, BEFORE_KEY, scene.eevee, wanted)
     return wanted
 
 
 def restore(scene):
     """Puts back what apply() replaced. Returns the names restored."""
-    before = scene.get(BEFORE_KEY)
-    if not before:
-        return []
-    values = before.to_dict() if hasattr(before, "to_dict") else dict(before)
-    for name, value in values.items():
-        setattr(scene.eevee, name, str(value) if name == "shadow_pool_size" else float(value))
-    del scene[BEFORE_KEY]
-    return sorted(values)
+    return put_back(scene, BEFORE_KEY, scene.eevee,
+                    lambda name, value: str(value) if name == "shadow_pool_size" else float(value))
 
 
 def describe(wanted):
