@@ -12,22 +12,15 @@ namespace probelights {
 
 AutoCountResult autoCount(const Probe& probe, const Evaluator& evaluator, BakeOptions options,
                           double tolerance, bool refit, int maxLights, bool moveDirections,
-                          const MomentTable* grid, double gridMs) {
+                          const WorkingGrid* grid) {
   if (!(tolerance > 0)) throw Error("the error tolerance must be positive");
   AutoCountResult best;
   // One working grid for every count tried (the grid does not depend on the count).
-  std::optional<MomentTable> own;
-  double tablesMs = gridMs;
-  if (!grid && usesWorkingGrid(options.method)) {
-    Stopwatch t;
-    own.emplace(probe, options.resolution.cellSize(probe.width()), options.centroid);
-    tablesMs = t.ms();
-    grid = &*own;
-  }
+  std::optional<WorkingGrid> own;
+  if (!grid) grid = &own.emplace(probe, options);
   auto attempt = [&](int n) {
     options.lights = n;
-    BakeResult r = grid ? bake(probe, *grid, options) : bake(probe, options);
-    if (grid) r.timings.tablesMs = tablesMs;
+    BakeResult r = grid->bake(probe, options);
     if (refit && r.lights.size() <= kMaxRefitLights)
       r.lights = refitIrradiance(evaluator, r.lights, nullptr, moveDirections);
     EffectErrors e = evaluator.evaluate(r.lights);
@@ -104,19 +97,13 @@ EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOpt
     return out;
   }
   // One working grid for the bakes and the evaluator's samples (no second pass over the pixels).
-  std::optional<MomentTable> grid;
-  double gridMs = 0;
-  if (usesWorkingGrid(options.method)) {
-    Stopwatch t;
-    grid.emplace(probe, options.resolution.cellSize(probe.width()), options.centroid);
-    gridMs = t.ms();
-  }
+  const WorkingGrid grid(probe, options);
   const EvaluatorOptions evaluatorOptions{a.evaluatorWidth, a.refit};
-  const Evaluator evaluator = grid ? Evaluator(probe, *grid, a.effects, evaluatorOptions)
-                                   : Evaluator(probe, a.effects, evaluatorOptions);
+  const Evaluator evaluator = grid.table() ? Evaluator(probe, *grid.table(), a.effects, evaluatorOptions)
+                                           : Evaluator(probe, a.effects, evaluatorOptions);
   if (a.maxError > 0) {
-    AutoCountResult chosen = autoCount(probe, evaluator, options, a.maxError, a.refit, 1024, a.moveDirections,
-                                       grid ? &*grid : nullptr, gridMs);
+    AutoCountResult chosen =
+        autoCount(probe, evaluator, options, a.maxError, a.refit, 1024, a.moveDirections, &grid);
     out.bake = std::move(chosen.bake);
     out.autoCount = true, out.met = chosen.met, out.tried = std::move(chosen.tried),
     out.count = chosen.lights;
@@ -130,8 +117,7 @@ EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOpt
                     100 * a.maxError, chosen.lights, 100 * chosen.errors.worst(a.effects));
     out.bake.notes.push_back(line);
   } else {
-    out.bake = grid ? bake(probe, *grid, options) : bake(probe, options);
-    if (grid) out.bake.timings.tablesMs = gridMs;
+    out.bake = grid.bake(probe, options);
     out.count = options.lights;
     if (a.refit) {
       if (out.bake.lights.size() > kMaxRefitLights)

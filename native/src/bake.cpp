@@ -58,6 +58,20 @@ BakeResult bake(const Probe& probe, const BakeOptions& options) {
   return result;
 }
 
+WorkingGrid::WorkingGrid(const Probe& probe, const BakeOptions& options) {
+  if (!usesWorkingGrid(options.method)) return;
+  Stopwatch t;
+  table_.emplace(probe, options.resolution.cellSize(probe.width()), options.centroid);
+  buildMs_ = t.ms();
+}
+
+BakeResult WorkingGrid::bake(const Probe& probe, const BakeOptions& options) const {
+  if (!table_) return probelights::bake(probe, options);
+  BakeResult r = probelights::bake(probe, *table_, options);
+  r.timings.tablesMs = buildMs_;
+  return r;
+}
+
 BakeResult bake(const Probe& probe, const MomentTable& table, const BakeOptions& options) {
   checkLightCount(options.lights);
   if (!usesWorkingGrid(options.method)) throw Error("the sh method bakes without a working grid");

@@ -22,20 +22,13 @@ std::vector<TradeoffRow> tradeoff(const Probe& probe, const Evaluator& evaluator
       if (method == Method::SphericalHarmonics && &res != &o.resolutions.front()) continue;
       // One working grid per resolution for every count; each row's time still includes its build, so a row
       // says what one bake at that count costs.
-      std::optional<MomentTable> table;
-      double tablesMs = 0;
-      if (usesWorkingGrid(method)) {
-        Stopwatch t;
-        table.emplace(probe, res.cellSize(probe.width()));
-        tablesMs = t.ms();
-      }
+      BakeOptions b;
+      b.method = method;
+      b.resolution = res;
+      const WorkingGrid grid(probe, b);
       for (int n : o.counts) {
-        BakeOptions b;
-        b.method = method;
         b.lights = n;
-        b.resolution = res;
-        BakeResult r = table ? bake(probe, *table, b) : bake(probe, b);
-        if (table) r.timings.tablesMs = tablesMs;
+        BakeResult r = grid.bake(probe, b);
         const auto resName =
             method == Method::SphericalHarmonics ? std::nullopt : std::optional<WorkingResolution>(res);
         rows.push_back({method, n, static_cast<int>(r.lights.size()), resName, false, bakeMs(r),

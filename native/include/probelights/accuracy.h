@@ -24,10 +24,10 @@ struct AutoCountResult {
 // up to maxLights; with refit, each candidate is refit first. When none meets it: the count with the lowest
 // error tried (the doubling stops two doublings past it without improvement), so a miss never costs more
 // lights than a count that did better. `grid`: the probe's working grid for these options if the caller has
-// built it (gridMs: what that took), else autoCount builds it.
+// built it, else autoCount builds it.
 AutoCountResult autoCount(const Probe& probe, const Evaluator& evaluator, BakeOptions options,
                           double tolerance, bool refit, int maxLights = 1024, bool moveDirections = false,
-                          const MomentTable* grid = nullptr, double gridMs = 0);
+                          const WorkingGrid* grid = nullptr);
 
 // One bake with the accuracy options the CLI and the add-on offer: `maxError` > 0 picks the count
 // (autoCount), `refit` refits the lights' colours, and any of them (or `evaluate`) measures the errors on

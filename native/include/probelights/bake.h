@@ -2,6 +2,7 @@
 // call.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -65,5 +66,21 @@ BakeResult bake(const Probe& probe, const MomentTable& table, const BakeOptions&
 
 // Whether bake() builds a working grid for `method` (all but spherical harmonics).
 inline bool usesWorkingGrid(Method method) { return method != Method::SphericalHarmonics; }
+
+// The working grid bake(probe, options) would cut on, built once (and timed) for callers that bake one probe
+// several times or sample it otherwise: auto count, the tradeoff grid, the estimate. Holds no grid for the sh
+// method, whose bakes then go the usual way.
+class WorkingGrid {
+ public:
+  WorkingGrid(const Probe& probe, const BakeOptions& options);
+  const MomentTable* table() const { return table_ ? &*table_ : nullptr; }
+  // bake(probe, table, options) with timings.tablesMs = the grid's build time (what one bake costs), or
+  // bake(probe, options) without a grid. options.resolution and centroid must be the grid's.
+  BakeResult bake(const Probe& probe, const BakeOptions& options) const;
+
+ private:
+  std::optional<MomentTable> table_;
+  double buildMs_ = 0;
+};
 
 }  // namespace probelights
