@@ -15,6 +15,7 @@ import numpy as np
 from . import cycles_settings, eevee_settings, native, render_cost
 from .errors import ProbeError
 from .light_objects import baked_worlds, make_lights, remove_collection_if_empty, remove_lights, world_collection
+from .properties import NATIVE_SUN_ANGLES
 from .world_graph import find_probe
 from .world_image import image_pixels, render_world
 from .world_mix import insert_mix, remove_mix
@@ -82,7 +83,8 @@ def bake_world(context, settings, progress=lambda fraction: None, rendered=None,
         baked = native.bake(pixels, projection=projection, method=settings.method, lights=settings.count,
                             resolution=settings.resolution, evaluate=True, effects="diffuse,shadow",
                             evaluator_width=512, refit=settings.refit, move_directions=settings.refit,
-                            max_error=max_error, nonfinite=settings.non_finite)
+                            max_error=max_error, nonfinite=settings.non_finite,
+                            sun_angles=NATIVE_SUN_ANGLES[settings.shadows] if settings.light_type == "SUN" else "points")
     except ProbeError as e:
         message = str(e)
         if "; to read them as 0" in message:  # the module names the CLI's option; here it is the panel's
@@ -90,7 +92,7 @@ def bake_world(context, settings, progress=lambda fraction: None, rendered=None,
         raise ProbeError(message) from None
     bake_done = time.perf_counter()
     progress(0.8)
-    lights = make_lights(scene, world, baked, source, settings.light_type, settings.soft_shadows, settings.distance,
+    lights = make_lights(scene, world, baked, source, settings.light_type, settings.distance,
                          lights_diffuse=settings.replace_diffuse, lights_glossy=settings.replace_reflections)
     insert_mix(world, keep_background=not settings.replace_background,
                keep_reflections=not settings.replace_reflections, keep_diffuse=not settings.replace_diffuse)

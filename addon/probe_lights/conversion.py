@@ -55,20 +55,13 @@ def sun_normal_irradiance(angle, blender_version):
     return 2.0 * c / (1.0 + c) if c > 0 else 0.0
 
 
-def sun_angle(angular_radius):
-    """The sun lamp angle (full cone, radians) for a region whose light spreads like a cap of `angular_radius`.
+def sun_parameters(direction, rgb, angle, blender_version):
+    """Rotation, colour, strength and angle of a sun lamp that gives a facing surface `rgb` in that Blender.
 
-    Half the cap's diameter, i.e. the radius itself: in Cycles renders of a diffuse sphere over a plane (block error
-    against the world, 16 / 64 suns) the full diameter over-softens, e.g. Poly Haven's thatch_chapel 6.8 % / 1.7 %
-    against 1.4 % / 1.2 % at half, noon_grass 2.9 % / 1.0 % against 2.0 % / 0.95 %; point suns (angle 0) gave
-    1.8 % / 1.2 % and 1.9 % / 0.94 % but hard shadows."""
-    return min(float(angular_radius), MAX_SUN_ANGLE)
-
-
-def sun_parameters(direction, rgb, angular_radius, blender_version, soft_shadows=True):
-    """Rotation, colour, strength and angle of a sun lamp that gives a facing surface `rgb` in that Blender."""
+    `angle`: the light's full cone angle from the core (radians; its `angle` column: fitted to the probe's shadows
+    when they are evaluated, 0 for hard shadows), at most 180 degrees."""
     colour, irradiance = colour_and_scale(rgb)
-    angle = sun_angle(angular_radius) if soft_shadows else 0.0
+    angle = min(max(float(angle), 0.0), MAX_SUN_ANGLE)
     factor = sun_normal_irradiance(angle, blender_version)
     return {"rotation": rotation_to_direction(direction), "color": colour,
             "energy": irradiance / factor if factor > 0 else 0.0, "angle": angle}

@@ -153,12 +153,12 @@ def _drive(owner, path, index, expression, name, socket, socket_index=None):
     driver.expression = expression  # a simple expression: evaluated without Python, also with auto-run off
 
 
-def make_lights(scene, world, baked, source, light_type="SUN", soft_shadows=True, distance=10.0,
+def make_lights(scene, world, baked, source, light_type="SUN", distance=10.0,
                 lights_diffuse=True, lights_glossy=False):
     """Creates one lamp per baked light under `world`'s rig. `baked` is the module's result (directions in the
     probe's frame); `source` (world_graph.ProbeSource) says how the world turns the probe (world_from_probe, the
     rig's rotation) and its Background strength (the lamps' energy scale); both are followed by drivers when the
-    world sets them with one Mapping node and a constant Strength.
+    world sets them with one Mapping node and a constant Strength. Suns get the angle the core gave each light.
 
     lights_diffuse / lights_glossy: which effects the lamps provide (the world keeps the others, world_mix.py), set
     both as Cycles ray visibility and as EEVEE's diffuse/specular factors."""
@@ -194,7 +194,7 @@ def make_lights(scene, world, baked, source, light_type="SUN", soft_shadows=True
             collection.objects.link(obj)
         obj.parent = holder
         if light_type == "SUN":
-            p = sun_parameters(direction, rgb, lights["angular_radius"][i], bpy.app.version, soft_shadows)
+            p = sun_parameters(direction, rgb, lights["angle"][i], bpy.app.version)  # the core's angle: fitted or 0
             data.angle = p["angle"]
             # Drawn small: the viewport draws a sun's direction line in object space; Cycles and EEVEE use only the
             # sun's direction (tests/blender/test_render.py renders a scaled sun).

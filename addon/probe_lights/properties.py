@@ -6,8 +6,14 @@ from bpy.props import BoolProperty, CollectionProperty, EnumProperty, FloatPrope
 METHODS = [("variance", "Variance minimization", "Cut where the light's spread is least (Viriyothai & Debevec 2009)"),
            ("median-cut", "Median cut", "Equal-energy regions (Debevec 2005)"),
            ("sh", "Spherical harmonics", "Cells of equal SH energy by hierarchical warping (Jarosz 2009, Berger 2011)")]
-LIGHT_TYPES = [("SUN", "Sun", "Sun lamps: parallel light with soft shadows as wide as each region"),
+LIGHT_TYPES = [("SUN", "Sun", "Sun lamps: parallel light, each with a soft shadow fitted to its region's light"),
                ("POINT", "Point", "Point lamps on a sphere around the origin")]
+# The suns' angles (the core's sun_angles: fit, spread, points).
+SHADOWS = [("FIT", "Fitted", "Soft shadows: each sun's angle chosen so its shadow matches the probe's light (the "
+            "estimated shadow error, on a sphere over a plane)"),
+           ("SPREAD", "Region spread", "Soft shadows: each sun as wide as the spread of its region's light"),
+           ("HARD", "Hard", "Sharp shadows: suns of angle 0")]
+NATIVE_SUN_ANGLES = {"FIT": "fit", "SPREAD": "spread", "HARD": "points"}
 RESOLUTIONS = [("auto", "Auto", "Cuts on a grid at most 2048 pixels wide (exact lights either way)"),
                ("full", "Full", "Cuts at full resolution, as the papers (slower for 4K and larger probes)"),
                ("512", "512", "Cuts on a 512-pixel-wide grid: fastest")]
@@ -26,8 +32,8 @@ def bake_settings():
         "method": EnumProperty(name="Method", items=METHODS, default="variance"),
         "light_type": EnumProperty(name="Light type", items=LIGHT_TYPES, default="SUN"),
         "resolution": EnumProperty(name="Working resolution", items=RESOLUTIONS, default="auto"),
-        "soft_shadows": BoolProperty(name="Soft shadows", default=True,
-                                     description="Give each sun the angle of its region's light"),
+        "shadows": EnumProperty(name="Shadows", items=SHADOWS, default="FIT",
+                                description="How soft each sun's shadow is (its angle)"),
         "distance": FloatProperty(name="Distance", default=10.0, min=0.01, unit="LENGTH",
                                   description="How far from the origin point lights are placed"),
         "replace_diffuse": BoolProperty(name="Diffuse + shadows", default=True,

@@ -55,7 +55,7 @@ def draw_panel(layout, context):
     col = layout.column(align=True)
     col.row(align=True).prop(settings, "light_type", expand=True)
     if settings.light_type == "SUN":
-        col.prop(settings, "soft_shadows")
+        col.prop(settings, "shadows")
     else:
         col.prop(settings, "distance")
     col.prop(settings, "refit")

@@ -41,6 +41,7 @@ BakeArgs parseBakeArgs(const std::vector<std::string>& argv) {
       flag({"--previews"}, [&] { a.previews = true; }),
       {{"--max-error"}, [&](const std::string& v) { acc.maxError = parseTolerance("--max-error", v); }},
       {{"--effects"}, [&](const std::string& v) { acc.effects = parseEffects(v); }},
+      {{"--sun-angles"}, [&](const std::string& v) { acc.sunAngles = parseSunAngles(v); }},
       flag({"-q", "--quiet"}, [&] { a.quiet = true; }),
       flag({"--refit"}, [&] { acc.refit = true; }),
       flag({"--refit-directions"}, [&] { acc.refit = acc.moveDirections = true; }),
@@ -72,12 +73,13 @@ void printSummary(const BakeArgs& a, const Probe& probe, const BakeOptions& opti
               toString(options.method).c_str(), r.lights.size(),
               (probe.width() + r.cellSize - 1) / r.cellSize, (probe.height() + r.cellSize - 1) / r.cellSize,
               r.cellSize);
-  std::printf("\n   #  direction (x, y, z)          rgb (W/m^2)                      share  radius(deg)\n");
+  std::printf(
+      "\n   #  direction (x, y, z)          rgb (W/m^2)                      share  radius  angle (deg)\n");
   for (std::size_t i = 0; i < r.lights.size(); ++i) {
     const Light& l = r.lights[i];
-    std::printf("%4zu  (%6.3f, %6.3f, %6.3f)  (%9.4g, %9.4g, %9.4g)  %6.2f%%  %8.2f\n", i, l.direction.x,
-                l.direction.y, l.direction.z, l.rgb[0], l.rgb[1], l.rgb[2], 100 * l.energyShare,
-                l.angularRadius * 180 / kPi);
+    std::printf("%4zu  (%6.3f, %6.3f, %6.3f)  (%9.4g, %9.4g, %9.4g)  %6.2f%%  %6.2f  %6.2f\n", i,
+                l.direction.x, l.direction.y, l.direction.z, l.rgb[0], l.rgb[1], l.rgb[2],
+                100 * l.energyShare, l.angularRadius * 180 / kPi, l.angle * 180 / kPi);
   }
   Rgb sum{};
   for (const Light& l : r.lights)
@@ -93,7 +95,8 @@ void printSummary(const BakeArgs& a, const Probe& probe, const BakeOptions& opti
     if (ev.effects & kDiffuse) std::printf("diffuse %.2f%%  ", 100 * ev.errors.diffuse);
     if (ev.effects & kShadow) std::printf("shadow %.2f%%  ", 100 * ev.errors.shadow);
     if (ev.effects & kGlossy) std::printf("glossy %.2f%%  ", 100 * ev.errors.glossy);
-    std::printf("(relative RMS of luminance vs the probe)%s\n", ev.refit ? ", lights refit" : "");
+    std::printf("(relative RMS of luminance vs the probe)%s; sun angles: %s\n",
+                ev.refit ? ", lights refit" : "", toString(ev.sunAngles).c_str());
     if (ev.refit && !ev.autoCount) std::printf("refit      energy shift %+.2f%%\n", 100 * ev.energyShift);
   }
   if (probe.hasPixels())
@@ -119,8 +122,9 @@ int bakeCommand(const std::vector<std::string>& argv) {
   if (bakesFromGridAlone(a)) grid.emplace(loadGrid(a.probe, a.probeOptions, a.bake));
   const Probe probe = grid ? std::move(grid->probe) : Probe::load(a.probe, a.probeOptions);
   const double loadMs = load.ms();
-  const EvaluatedBake done = grid ? bakeOnGrid(probe, grid->table, grid->tablesMs, a.bake)
-                                  : bakeEvaluated(probe, a.bake, a.accuracy);
+  const EvaluatedBake done =
+      grid ? bakeOnGrid(probe, grid->table, grid->tablesMs, a.bake, a.accuracy.sunAngles)
+           : bakeEvaluated(probe, a.bake, a.accuracy);
   if (!a.output.empty()) {
     writeJson(bakeToJson({a.probe, probe, a.bake, done, loadMs}), a.output, 2);
     if (a.output == "-") a.quiet = true;

@@ -89,8 +89,9 @@ int bakeLibrary(const BakeArgs& a) {
     if (item.probe) {
       try {
         Stopwatch clock;
-        const EvaluatedBake result = item.table ? bakeOnGrid(*item.probe, *item.table, item.tablesMs, a.bake)
-                                                : bakeEvaluated(*item.probe, a.bake, a.accuracy);
+        const EvaluatedBake result =
+            item.table ? bakeOnGrid(*item.probe, *item.table, item.tablesMs, a.bake, a.accuracy.sunAngles)
+                       : bakeEvaluated(*item.probe, a.bake, a.accuracy);
         const double ms = clock.ms();
         bakeMs += ms;
         writeWhole(dir / (name + ".json"),

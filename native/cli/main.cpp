@@ -50,6 +50,8 @@ options:
   --max-error E                     the fewest lights whose error is at most E (e.g. 1% or 0.01) on --effects
   --effects diffuse,shadow,glossy   effects to evaluate (default diffuse); evaluating prints their errors
   --evaluate                        evaluate the lights on --effects without choosing the count
+  --sun-angles fit|spread|points    the lights' cone angles: fitted to the probe's shadows when shadows are
+                                    evaluated (default), from each region's spread, or 0 (hard shadows)
   -q, --quiet                       no summary on standard output
   (sh, sample: --projection and --nonfinite as above; JSON goes to -o FILE or standard output)
 )";

@@ -131,20 +131,22 @@ ImageView viewOf(Pixels& pixels) {
 }
 
 AccuracyOptions accuracyOptions(const std::string& effects, bool evaluate, bool refit, double maxError,
-                                int evaluatorWidth, bool moveDirections) {
-  return {parseEffects(effects), evaluate, refit || moveDirections, maxError, evaluatorWidth, moveDirections};
+                                int evaluatorWidth, bool moveDirections, const std::string& sunAngles) {
+  return {parseEffects(effects), evaluate,       refit || moveDirections,  maxError,
+          evaluatorWidth,        moveDirections, parseSunAngles(sunAngles)};
 }
 
 py::dict bakePixels(Pixels pixels, const std::string& projection, const std::string& method, int lights,
                     const std::string& centroid, const std::string& resolution, bool horizon, int bands,
                     double epsilon, const std::string& effects, bool evaluate, bool refit,
-                    bool moveDirections, double maxError, int evaluatorWidth, const std::string& nonfinite) {
+                    bool moveDirections, double maxError, int evaluatorWidth, const std::string& sunAngles,
+                    const std::string& nonfinite) {
   const ImageView view = viewOf(pixels);
   const auto kind = parseProjection(projection);
   const BakeOptions options = bakeOptions(method, lights, centroid, resolution, horizon, bands, epsilon);
   const NonFinitePolicy policy = parseNonFinitePolicy(nonfinite);
   const AccuracyOptions accuracy =
-      accuracyOptions(effects, evaluate, refit, maxError, evaluatorWidth, moveDirections);
+      accuracyOptions(effects, evaluate, refit, maxError, evaluatorWidth, moveDirections, sunAngles);
   std::optional<Probe> probe;
   EvaluatedBake result;
   {
@@ -161,21 +163,22 @@ std::tuple<ProbeOptions, BakeOptions, AccuracyOptions> fileRequest(
     const std::string& projection, const std::string& method, int lights, const std::string& centroid,
     const std::string& resolution, bool horizon, int bands, double epsilon, const std::string& effects,
     bool evaluate, bool refit, bool moveDirections, double maxError, int evaluatorWidth,
-    const std::string& nonfinite) {
+    const std::string& sunAngles, const std::string& nonfinite) {
   ProbeOptions probe;
   probe.projection = parseProjectionChoice(projection);
   probe.nonFinite = parseNonFinitePolicy(nonfinite);
   return {probe, bakeOptions(method, lights, centroid, resolution, horizon, bands, epsilon),
-          accuracyOptions(effects, evaluate, refit, maxError, evaluatorWidth, moveDirections)};
+          accuracyOptions(effects, evaluate, refit, maxError, evaluatorWidth, moveDirections, sunAngles)};
 }
 
 py::dict bakeFile(const std::string& path, const std::string& projection, const std::string& method,
                   int lights, const std::string& centroid, const std::string& resolution, bool horizon,
                   int bands, double epsilon, const std::string& effects, bool evaluate, bool refit,
-                  bool moveDirections, double maxError, int evaluatorWidth, const std::string& nonfinite) {
+                  bool moveDirections, double maxError, int evaluatorWidth, const std::string& sunAngles,
+                  const std::string& nonfinite) {
   const auto [probeOptions, options, accuracy] =
       fileRequest(projection, method, lights, centroid, resolution, horizon, bands, epsilon, effects,
-                  evaluate, refit, moveDirections, maxError, evaluatorWidth, nonfinite);
+                  evaluate, refit, moveDirections, maxError, evaluatorWidth, sunAngles, nonfinite);
   std::optional<Probe> probe;
   EvaluatedBake result;
   double loadMs = 0;
@@ -187,7 +190,7 @@ py::dict bakeFile(const std::string& path, const std::string& projection, const 
       GridProbe grid = loadGrid(path, probeOptions, options);
       probe.emplace(std::move(grid.probe));
       loadMs = load.ms();
-      result = bakeOnGrid(*probe, grid.table, grid.tablesMs, options);
+      result = bakeOnGrid(*probe, grid.table, grid.tablesMs, options, accuracy.sunAngles);
     } else {
       probe.emplace(Probe::load(path, probeOptions));
       loadMs = load.ms();
@@ -203,10 +206,11 @@ py::list bakeFiles(const std::vector<std::string>& inputs, const std::string& pr
                    const std::string& method, int lights, const std::string& centroid,
                    const std::string& resolution, bool horizon, int bands, double epsilon,
                    const std::string& effects, bool evaluate, bool refit, bool moveDirections,
-                   double maxError, int evaluatorWidth, const std::string& nonfinite) {
+                   double maxError, int evaluatorWidth, const std::string& sunAngles,
+                   const std::string& nonfinite) {
   const auto [probeOptions, options, accuracy] =
       fileRequest(projection, method, lights, centroid, resolution, horizon, bands, epsilon, effects,
-                  evaluate, refit, moveDirections, maxError, evaluatorWidth, nonfinite);
+                  evaluate, refit, moveDirections, maxError, evaluatorWidth, sunAngles, nonfinite);
   py::list out;
   {
     py::gil_scoped_release release;
@@ -215,8 +219,9 @@ py::list bakeFiles(const std::vector<std::string>& inputs, const std::string& pr
       std::optional<EvaluatedBake> result;
       if (item.probe) {
         try {
-          result = item.table ? bakeOnGrid(*item.probe, *item.table, item.tablesMs, options)
-                              : bakeEvaluated(*item.probe, options, accuracy);
+          result = item.table
+                       ? bakeOnGrid(*item.probe, *item.table, item.tablesMs, options, accuracy.sunAngles)
+                       : bakeEvaluated(*item.probe, options, accuracy);
         } catch (const std::exception& e) {
           error = e.what();
         }
@@ -321,7 +326,7 @@ py::tuple shSample(Pixels pixels, int bands, double epsilon, int samples, int de
   py::arg("resolution") = "auto", py::arg("horizon") = false, py::arg("bands") = 8,         \
   py::arg("epsilon") = 0.01, py::arg("effects") = "diffuse", py::arg("evaluate") = false,   \
   py::arg("refit") = false, py::arg("move_directions") = false, py::arg("max_error") = 0.0, \
-  py::arg("evaluator_width") = 2048, py::arg("nonfinite") = "error"
+  py::arg("evaluator_width") = 2048, py::arg("sun_angles") = "fit", py::arg("nonfinite") = "error"
 
 PYBIND11_MODULE(_probelights, m) {
   m.doc() = "probelights: turn an HDR light probe into N lights that carry exactly its energy";

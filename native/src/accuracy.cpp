@@ -12,7 +12,7 @@ namespace probelights {
 
 AutoCountResult autoCount(const Probe& probe, const Evaluator& evaluator, BakeOptions options,
                           double tolerance, bool refit, int maxLights, bool moveDirections,
-                          const WorkingGrid* grid) {
+                          const WorkingGrid* grid, SunAngles angles) {
   if (!(tolerance > 0)) throw Error("the error tolerance must be positive");
   AutoCountResult best;
   // One working grid for every count tried (the grid does not depend on the count).
@@ -23,6 +23,7 @@ AutoCountResult autoCount(const Probe& probe, const Evaluator& evaluator, BakeOp
     BakeResult r = grid->bake(probe, options);
     if (refit && r.lights.size() <= kMaxRefitLights)
       r.lights = refitIrradiance(evaluator, r.lights, nullptr, moveDirections);
+    applySunAngles(angles, &evaluator, r.lights);
     EffectErrors e = evaluator.evaluate(r.lights);
     best.tried.push_back({n, e.worst(evaluator.effects())});
     return std::pair{std::move(r), e};
@@ -69,9 +70,11 @@ bool bakesOnGridAlone(const BakeOptions& options, const AccuracyOptions& a) {
 }
 
 EvaluatedBake bakeOnGrid(const Probe& probe, const MomentTable& table, double tablesMs,
-                         const BakeOptions& options) {
+                         const BakeOptions& options, SunAngles angles) {
   EvaluatedBake out;
   out.bake = bake(probe, table, options);
+  applySunAngles(angles, nullptr, out.bake.lights);
+  out.sunAngles = angles == SunAngles::Points ? SunAngles::Points : SunAngles::Spread;
   out.bake.timings.tablesMs = tablesMs;
   out.count = options.lights;
   if (!probe.hasPixels())
@@ -94,6 +97,8 @@ EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOpt
   if (!evaluating) {
     out.bake = bake(probe, options);
     out.count = options.lights;
+    applySunAngles(a.sunAngles, nullptr, out.bake.lights);
+    out.sunAngles = a.sunAngles == SunAngles::Points ? SunAngles::Points : SunAngles::Spread;
     return out;
   }
   // One working grid for the bakes and the evaluator's samples (no second pass over the pixels).
@@ -103,7 +108,7 @@ EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOpt
                                            : Evaluator(probe, a.effects, evaluatorOptions);
   if (a.maxError > 0) {
     AutoCountResult chosen =
-        autoCount(probe, evaluator, options, a.maxError, a.refit, 1024, a.moveDirections, &grid);
+        autoCount(probe, evaluator, options, a.maxError, a.refit, 1024, a.moveDirections, &grid, a.sunAngles);
     out.bake = std::move(chosen.bake);
     out.autoCount = true, out.met = chosen.met, out.tried = std::move(chosen.tried),
     out.count = chosen.lights;
@@ -124,10 +129,12 @@ EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOpt
         throw Error("the refit takes at most " + std::to_string(kMaxRefitLights) + " lights");
       out.bake.lights = refitIrradiance(evaluator, out.bake.lights, &out.energyShift, a.moveDirections);
     }
+    applySunAngles(a.sunAngles, &evaluator, out.bake.lights);
   }
   out.evaluated = true;
   out.refit = a.refit;
   out.effects = a.effects;
+  out.sunAngles = a.sunAngles == SunAngles::Fit && !(a.effects & kShadow) ? SunAngles::Spread : a.sunAngles;
   out.errors = evaluator.evaluate(out.bake.lights);
   return out;
 }

@@ -177,31 +177,46 @@ Evaluator::Evaluator(const Probe& probe, const MomentTable* grid, Effects effect
       });
 }
 
-Rgb Evaluator::lightsDiffuse(const std::vector<Light>& lights, const Vec3& n) {
+double Evaluator::diffuseKernel(const Light& l, const Vec3& n) {
+  return l.angle > 0 ? coneIrradiance(l.direction, l.angle, n) : std::max(0.0, dot(n, l.direction));
+}
+
+double Evaluator::shadowKernel(const Light& l, const Vec3& p) {
+  if (l.angle > 0) {
+    const Cap sphere = sphereCap(p, {0, 0, 1}, 1.0);
+    return coneIrradiance(l.direction, l.angle, {0, 0, 1}, &sphere);
+  }
+  return l.direction.z > 0 && visible(p, l.direction) ? l.direction.z : 0.0;
+}
+
+double Evaluator::glossyKernel(const Light& l, const Vec3& r, int exponent) {
+  if (l.angle > 0) return coneGlossy(l.direction, l.angle, r, exponent);
+  return (exponent + 1) / (2 * kPi) * lobe(dot(r, l.direction), exponent);
+}
+
+namespace {
+template <class Kernel>
+Rgb sumOver(const std::vector<Light>& lights, Kernel&& kernel) {
   Rgb s{};
   for (const Light& l : lights) {
-    double w = std::max(0.0, dot(n, l.direction));
-    for (int c = 0; c < 3; ++c) s[c] += l.rgb[c] * w;
+    const double w = kernel(l);
+    if (w > 0)
+      for (int c = 0; c < 3; ++c) s[c] += l.rgb[c] * w;
   }
   return s;
+}
+}  // namespace
+
+Rgb Evaluator::lightsDiffuse(const std::vector<Light>& lights, const Vec3& n) {
+  return sumOver(lights, [&](const Light& l) { return diffuseKernel(l, n); });
 }
 
 Rgb Evaluator::lightsShadow(const std::vector<Light>& lights, const Vec3& p) {
-  Rgb s{};
-  for (const Light& l : lights) {
-    if (l.direction.z <= 0 || !visible(p, l.direction)) continue;
-    for (int c = 0; c < 3; ++c) s[c] += l.rgb[c] * l.direction.z;
-  }
-  return s;
+  return sumOver(lights, [&](const Light& l) { return shadowKernel(l, p); });
 }
 
 Rgb Evaluator::lightsGlossy(const std::vector<Light>& lights, const Vec3& r, int exponent) {
-  Rgb s{};
-  for (const Light& l : lights) {
-    double w = (exponent + 1) / (2 * kPi) * lobe(dot(r, l.direction), exponent);
-    for (int c = 0; c < 3; ++c) s[c] += l.rgb[c] * w;
-  }
-  return s;
+  return sumOver(lights, [&](const Light& l) { return glossyKernel(l, r, exponent); });
 }
 
 EffectErrors Evaluator::evaluate(const std::vector<Light>& lights) const {

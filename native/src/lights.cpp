@@ -62,6 +62,9 @@ std::vector<Light> lightsFromSums(const Probe& probe, const std::vector<Rect>& r
     // ~0 (sharp shadows), a region of uniform sky gives its own size. A Blender sun lamp's angle is 2a.
     const double R = std::clamp(s.moment.length() / s.energy, 0.0, 1.0);
     light.angularRadius = std::acos(std::clamp(2.0 * R - 1.0, -1.0, 1.0));
+    // A sun of angle 2a has the region's spread; half that, a full angle of the radius, rendered closer in
+    // Cycles before angles were fitted (conversion.py in the add-on has the figures).
+    light.angle = light.angularRadius;
     light.rect = regions[i];
     light.energyShare = s.energy / totalEnergy;
     lights.push_back(light);

@@ -27,7 +27,7 @@ void moveDirections(const std::vector<Vec3>& normals, const std::vector<Rgb>& tr
   for (std::size_t i = 0; i < m; ++i) target[i] = luminance(truth[i]);
   auto contribution = [&](const Light& l, std::vector<double>& out) {
     const double y = luminance(l.rgb);
-    for (std::size_t i = 0; i < m; ++i) out[i] = y * std::max(0.0, dot(normals[i], l.direction));
+    for (std::size_t i = 0; i < m; ++i) out[i] = y * Evaluator::diffuseKernel(l, normals[i]);
   };
   for (const Light& l : lights) {
     contribution(l, term);
@@ -74,7 +74,7 @@ std::vector<Light> refitIrradiance(const Evaluator& evaluator, const std::vector
   auto solveColours = [&](std::vector<Light>& ls) {
     std::vector<double> A(static_cast<std::size_t>(m) * n);
     for (int i = 0; i < m; ++i)
-      for (int j = 0; j < n; ++j) A[i * n + j] = std::max(0.0, dot(normals[i], ls[j].direction));
+      for (int j = 0; j < n; ++j) A[i * n + j] = Evaluator::diffuseKernel(ls[j], normals[i]);
     for (int c = 0; c < 3; ++c) {
       std::vector<double> b(m);
       for (int i = 0; i < m; ++i) b[i] = truth[i][c];

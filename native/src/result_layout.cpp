@@ -14,6 +14,7 @@ void writeEvaluation(ResultWriter& w, const EvaluatedBake& e) {
   if (e.effects & kShadow) w.number("shadow", e.errors.shadow);
   if (e.effects & kGlossy) w.number("glossy", e.errors.glossy);
   if (e.refit && !e.autoCount) w.number("energy_shift", e.energyShift);
+  w.text("sun_angles", toString(e.sunAngles));
   if (e.autoCount) {
     w.begin("auto_count");
     w.boolean("met", e.met);
@@ -80,6 +81,7 @@ void writeBake(ResultWriter& w, const BakeReport& report) {
             [&](std::size_t i, double* out) { out[0] = L[i].solidAngle; }},
            {"angular_radius", 1, ResultColumn::Kind::Number,
             [&](std::size_t i, double* out) { out[0] = L[i].angularRadius; }},
+           {"angle", 1, ResultColumn::Kind::Number, [&](std::size_t i, double* out) { out[0] = L[i].angle; }},
            {"rect", 4, ResultColumn::Kind::Integer,
             [&](std::size_t i, double* out) {
               out[0] = L[i].rect.x0, out[1] = L[i].rect.y0, out[2] = L[i].rect.x1, out[3] = L[i].rect.y1;

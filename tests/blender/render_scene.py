@@ -52,6 +52,49 @@ def sphere_over_plane(width, height, samples):
     scene.cycles.sample_clamp_indirect = 0.0  # the reference must be unbiased (Blender 3.x defaults to 10)
 
 
+def ground_under_sphere(samples, size=16):
+    """The evaluator's shadow scene (native/include/probelights/evaluate.h), rendered: a white diffuse plane at z = 0
+    under a unit sphere resting on it at the origin, seen straight down by an orthographic camera over
+    [-2.5, 2.5]^2 at size x size pixels. With size 16 each pixel's centre is one of the evaluator's ground points and
+    the pixel filter is 0.01 px wide, so a pixel is the point's irradiance / pi. Direct light only; the sphere
+    casts shadows but is hidden from the camera."""
+    scene = bpy.context.scene
+    mat = diffuse_material(albedo=1.0)
+    bpy.ops.mesh.primitive_plane_add(size=12)
+    bpy.context.active_object.data.materials.append(mat)
+    bpy.ops.mesh.primitive_uv_sphere_add(radius=1, location=(0, 0, 1), segments=96, ring_count=48)
+    bpy.ops.object.shade_smooth()
+    sphere = bpy.context.active_object
+    sphere.visible_camera = False
+    cam = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
+    cam.location = (0, 0, 10)
+    cam.data.type = "ORTHO"
+    cam.data.ortho_scale = 5.0
+    scene.collection.objects.link(cam)
+    scene.camera = cam
+    r = scene.render
+    r.engine = "CYCLES"
+    r.resolution_x = r.resolution_y = size
+    r.resolution_percentage = 100
+    r.film_transparent = False
+    r.image_settings.file_format = "OPEN_EXR"
+    r.image_settings.color_depth = "32"
+    c = scene.cycles
+    c.samples = samples
+    c.use_adaptive_sampling = False
+    c.use_denoising = False
+    c.seed = 1
+    c.max_bounces = 0
+    c.filter_width = 0.01
+    c.sample_clamp_direct = c.sample_clamp_indirect = 0.0
+
+
+def relative_rms(truth, got):
+    """rms(got - truth) / rms(truth) of the pixels' luminance: the evaluator's error measure."""
+    a, b = truth[..., :3] @ LUM, got[..., :3] @ LUM
+    return float(np.sqrt(np.mean((b - a) ** 2) / np.mean(a ** 2)))
+
+
 def render():
     """Renders the scene; returns the linear RGBA pixels, rows top to bottom."""
     fd, path = tempfile.mkstemp(suffix=".exr")

@@ -194,7 +194,7 @@ def test_groups_and_reroutes_are_followed():
 def test_sun_parameters_point_the_lamp_and_keep_its_irradiance():
     d = np.array([0.3, -0.4, 0.866])
     d /= np.linalg.norm(d)
-    p = conversion.sun_parameters(d, (2.0, 1.0, 0.5), angular_radius=0.2, blender_version=(3, 4, 1))
+    p = conversion.sun_parameters(d, (2.0, 1.0, 0.5), angle=0.2, blender_version=(3, 4, 1))
     rot = p["rotation"]
     assert np.allclose(rot.T @ rot, np.eye(3)) and np.isclose(np.linalg.det(rot), 1)
     assert np.allclose(rot[:, 2], d)  # local +Z towards the light: a sun shines along its -Z
@@ -202,7 +202,8 @@ def test_sun_parameters_point_the_lamp_and_keep_its_irradiance():
     assert p["energy"] * conversion.sun_normal_irradiance(p["angle"], (3, 4, 1)) == pytest.approx(2.0)
     assert p["energy"] > 2.0  # Blender 3.4's wide suns give less than their strength
     assert conversion.sun_parameters(d, (2, 1, 0.5), 0.2, (4, 5, 0))["energy"] == pytest.approx(2.0)  # 4.0+: S
-    assert conversion.sun_parameters(d, (2, 1, 0.5), 0.2, (5, 2, 3), soft_shadows=False)["angle"] == 0.0
+    assert conversion.sun_parameters(d, (2, 1, 0.5), 0.0, (5, 2, 3))["angle"] == 0.0
+    assert conversion.sun_parameters(d, (2, 1, 0.5), 4.0, (5, 2, 3))["angle"] == pytest.approx(math.pi)
     straight_up = conversion.rotation_to_direction((0, 0, 1))
     assert np.allclose(straight_up[:, 2], (0, 0, 1))
 

@@ -8,6 +8,7 @@
 #include "probelights/bake.h"
 #include "probelights/evaluate.h"
 #include "probelights/refit.h"
+#include "probelights/sun_angles.h"
 
 namespace probelights {
 
@@ -25,9 +26,10 @@ struct AutoCountResult {
 // error tried (the doubling stops two doublings past it without improvement), so a miss never costs more
 // lights than a count that did better. `grid`: the probe's working grid for these options if the caller has
 // built it, else autoCount builds it.
+// `angles`: each candidate's sun angles (sun_angles.h) before it is evaluated.
 AutoCountResult autoCount(const Probe& probe, const Evaluator& evaluator, BakeOptions options,
                           double tolerance, bool refit, int maxLights = 1024, bool moveDirections = false,
-                          const WorkingGrid* grid = nullptr);
+                          const WorkingGrid* grid = nullptr, SunAngles angles = SunAngles::Spread);
 
 // One bake with the accuracy options the CLI and the add-on offer: `maxError` > 0 picks the count
 // (autoCount), `refit` refits the lights' colours, and any of them (or `evaluate`) measures the errors on
@@ -38,6 +40,8 @@ struct AccuracyOptions {
   double maxError = 0;
   int evaluatorWidth = 2048;    // EvaluatorOptions::maxWidth (the add-on's quick estimate uses 512)
   bool moveDirections = false;  // the refit also moves directions (refit.h)
+  SunAngles sunAngles =
+      SunAngles::Fit;  // the lights' angles (sun_angles.h), fitted when shadows are evaluated
 };
 
 struct EvaluatedBake {
@@ -45,8 +49,9 @@ struct EvaluatedBake {
   bool evaluated = false, autoCount = false, met = false, refit = false;
   Effects effects;
   EffectErrors errors;
-  double energyShift = 0;  // of the refit
-  int count = 0;           // the light count asked for, or chosen when autoCount (bake.lights may hold fewer)
+  double energyShift = 0;                   // of the refit
+  SunAngles sunAngles = SunAngles::Spread;  // what the lights' angles are: fit only when they were fitted
+  int count = 0;  // the light count asked for, or chosen when autoCount (bake.lights may hold fewer)
   std::vector<std::pair<int, double>> tried;  // autoCount: (count, worst error) of every count tried
 };
 
@@ -59,6 +64,6 @@ bool bakesOnGridAlone(const BakeOptions& options, const AccuracyOptions& accurac
 
 // bakeEvaluated for such a bake, on the grid loadGrid built (tablesMs: its build time, within the load).
 EvaluatedBake bakeOnGrid(const Probe& probe, const MomentTable& table, double tablesMs,
-                         const BakeOptions& options);
+                         const BakeOptions& options, SunAngles angles);
 
 }  // namespace probelights

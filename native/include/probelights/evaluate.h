@@ -6,16 +6,19 @@
 //            sphere of radius 1 resting on it at the origin, visibility by analytic ray-sphere tests;
 //   glossy:  a normalized Phong lobe (n + 1) / (2 pi) max(0, r.w)^n, n = 8 and 64, around 256 directions r.
 // Error of an effect = relative RMS of luminance over its points: rms(lights - truth) / rms(truth).
-// Lights are point (delta) lights: each contributes rgb x kernel(direction). The probe is used pixel by pixel
-// up to 2048 pixels wide (EvaluatorOptions::maxWidth); wider probes are grouped into cells of whole pixels
-// with exact rgb sums at their energy centroid (at 2048 a cell is at most 0.18 degrees across: nothing the
-// smooth kernels resolve; the add-on's quick estimate uses 512).
+// Lights are drawn as the renderer draws them (cone.h): a light of angle 0 is a point direction contributing
+// rgb x kernel(direction); a sun of angle 2a is a cone of uniform radiance, its kernels integrated over the
+// cone (shadow: the part of the cone the sphere hides, exactly). The probe is used pixel by pixel up to 2048
+// pixels wide (EvaluatorOptions::maxWidth); wider probes are grouped into cells of whole pixels with exact
+// rgb sums at their energy centroid (at 2048 a cell is at most 0.18 degrees across: nothing the smooth
+// kernels resolve; the add-on's quick estimate uses 512).
 #pragma once
 
 #include <limits>
 #include <string>
 #include <vector>
 
+#include "probelights/cone.h"
 #include "probelights/lights.h"
 #include "probelights/moment_table.h"
 #include "probelights/probe.h"
@@ -78,10 +81,15 @@ class Evaluator {
   const std::vector<Vec3>& fitNormals() const { return fitNormals_; }
   const std::vector<Rgb>& fitTruth() const { return fitTruth_; }
 
-  // Closed-form answers of point lights.
+  // The lights' answers: closed form for points, over each light's cone for suns with an angle (cone.h).
   static Rgb lightsDiffuse(const std::vector<Light>& lights, const Vec3& n);
   static Rgb lightsShadow(const std::vector<Light>& lights, const Vec3& p);
   static Rgb lightsGlossy(const std::vector<Light>& lights, const Vec3& r, int exponent);
+  // One light's kernels: what a unit rgb gives a surface of normal n (diffuse), the ground point p under the
+  // sphere (shadow), a Phong lobe around r.
+  static double diffuseKernel(const Light& light, const Vec3& n);
+  static double shadowKernel(const Light& light, const Vec3& p);
+  static double glossyKernel(const Light& light, const Vec3& r, int exponent);
   // Visibility of direction d from ground point p past the unit sphere at (0, 0, 1).
   static bool visible(const Vec3& p, const Vec3& d);
 

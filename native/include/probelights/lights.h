@@ -27,8 +27,12 @@ struct Light {
                           // for a Blender sun lamp's strength
   double solidAngle = 0;  // of the region
   double angularRadius = 0;  // radians: the cap with the same spread as the region's light (see lights.cpp)
-  Rect rect;                 // the region, in pixels
-  double energyShare = 0;    // the region's luminance energy / the probe's
+  // The full cone angle the renderer draws it with (a Blender sun's Angle), radians in [0, pi]; 0 is a point
+  // direction. Made from the spread (angularRadius; see lights.cpp), fitted to the probe's shadows when they
+  // are evaluated (sun_angles.h). The evaluator models the light as this cone (cone.h).
+  double angle = 0;
+  Rect rect;               // the region, in pixels
+  double energyShare = 0;  // the region's luminance energy / the probe's
 };
 
 // One light per region that carries energy, from the exact sums over the region's full-resolution pixels.

@@ -5,11 +5,11 @@
 //   source {path, width, height, projection, negative_samples, non_finite_samples}
 //   method, sh {bands, epsilon, depth} | null, centroid, requested_lights, horizon_split,
 //   working_resolution {setting, cell_size},
-//   lights: a table, one row per light: direction (3), rgb (3), solid_angle, angular_radius, rect (4),
+//   lights: a table, one row per light: direction (3), rgb (3), solid_angle, angular_radius, angle, rect (4),
 //           energy_share
 //   total_rgb (3), timings_ms {load, tables, partition, lights}, notes,
-//   evaluation {effects, refit, error, diffuse | shadow | glossy, energy_shift, auto_count {met, lights,
-//               tried: a table of lights, worst_error}} | null
+//   evaluation {effects, refit, error, diffuse | shadow | glossy, energy_shift, sun_angles,
+//               auto_count {met, lights, tried: a table of lights, worst_error}} | null
 // and of the tradeoff grid (writeTradeoff, below).
 #pragma once
 

@@ -1,0 +1,36 @@
+// A light as the renderer draws it: a Cycles sun of full angle 2a is a cone of half-angle a around its
+// direction with uniform radiance, scaled so that a surface facing it receives its strength (Blender 4.0 and
+// later normalize it so; for 3.4 the add-on divides the strength by 3.4's factor, conversion.py). A light's
+// effect on a surface is then its rgb times a kernel of the cone: what this file computes. Angle 0 is a point
+// direction (the kernels are then the point light's, bit for bit).
+#pragma once
+
+#include "probelights/geometry.h"
+
+namespace probelights {
+
+// A spherical cap: the directions within `radius` (radians) of the unit `axis`.
+struct Cap {
+  Vec3 axis;
+  double radius = 0;
+};
+
+// The cap a sphere of `radius` centred at `centre` covers seen from `point` (outside it).
+Cap sphereCap(const Vec3& point, const Vec3& centre, double radius);
+
+// Irradiance on a surface of unit normal `normal` from a unit-strength cone of full angle `angle` (radians,
+// [0, pi]) along the unit `axis`, the directions inside `occluder` (if given) hidden:
+//   (1 / (pi sin^2 a)) * integral over the cone, outside the occluder, of max(0, normal . w) dw.
+// The occluder must lie in front of the surface (normal . w >= 0 on it), as a sphere resting on a plane does
+// for points of the plane. Exact up to one-dimensional quadrature: rings around the axis, each ring's visible
+// arcs and their cosine integral in closed form, Gauss-Legendre over the ring angle split where an arc appears
+// (a smoothstep substitution on each piece takes away the square-root ends): errors ~1e-8, at most
+// ~1e-6 (tests: brute force, closed forms).
+double coneIrradiance(const Vec3& axis, double angle, const Vec3& normal, const Cap* occluder = nullptr);
+
+// A normalized Phong lobe (e + 1) / (2 pi) max(0, r . w)^e integrated over the same cone (radiance
+// 1 / (pi sin^2 a)), by quadrature (Gauss-Legendre over the ring angle in two pieces, 32 points around each
+// ring; within 1e-3, tested).
+double coneGlossy(const Vec3& axis, double angle, const Vec3& reflected, int exponent);
+
+}  // namespace probelights

@@ -1,0 +1,179 @@
+#include "probelights/cone.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+namespace probelights {
+
+namespace {
+
+// n-point Gauss-Legendre on [0, 1] (Newton on the Legendre polynomial's roots).
+struct GaussLegendre {
+  std::vector<double> nodes, weights;
+  explicit GaussLegendre(int n) : nodes(n), weights(n) {
+    for (int i = 0; i < n; ++i) {
+      double x = std::cos(kPi * (i + 0.75) / (n + 0.5)), dp = 1;
+      for (int it = 0; it < 100; ++it) {
+        double p0 = 1, p1 = x;
+        for (int k = 2; k <= n; ++k) {
+          const double p2 = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
+          p0 = p1, p1 = p2;
+        }
+        dp = n * (x * p1 - p0) / (x * x - 1);
+        const double dx = p1 / dp;
+        x -= dx;
+        if (std::abs(dx) < 1e-16) break;
+      }
+      nodes[i] = 0.5 * (1 - x);
+      weights[i] = 1 / ((1 - x * x) * dp * dp);
+    }
+  }
+};
+
+const GaussLegendre& rule() {
+  static const GaussLegendre r(8);  // pieces are smooth: 8 points give ~1e-8 (1e-6 at worst, tested)
+  return r;
+}
+
+struct Frame {
+  Vec3 e1, e2;
+};
+
+Frame frameAround(const Vec3& l) {
+  const Vec3 up = std::abs(l.z) < 0.9 ? Vec3{0, 0, 1} : Vec3{1, 0, 0};
+  Vec3 e1{up.y * l.z - up.z * l.y, up.z * l.x - up.x * l.z, up.x * l.y - up.y * l.x};
+  e1 = (1.0 / e1.length()) * e1;
+  const Vec3 e2{l.y * e1.z - l.z * e1.y, l.z * e1.x - l.x * e1.z, l.x * e1.y - l.y * e1.x};
+  return {e1, e2};
+}
+
+double angleBetween(double along, double across) { return std::atan2(across, along); }
+
+// Integral of f(t) over [t0, t1] by Gauss-Legendre after t = t0 + (t1 - t0) (3u^2 - 2u^3): the substitution's
+// derivative vanishes at both ends, which turns the square-root behaviour of an arc that opens there into a
+// smooth integrand.
+template <class F>
+double smoothPiece(double t0, double t1, F&& f) {
+  const double span = t1 - t0;
+  double s = 0;
+  const GaussLegendre& gl = rule();
+  for (std::size_t i = 0; i < gl.nodes.size(); ++i) {
+    const double u = gl.nodes[i];
+    s += gl.weights[i] * f(t0 + span * u * u * (3 - 2 * u)) * 6 * u * (1 - u);
+  }
+  return s * span;
+}
+
+}  // namespace
+
+Cap sphereCap(const Vec3& point, const Vec3& centre, double radius) {
+  const Vec3 v = centre - point;
+  const double d = v.length();
+  return {(1.0 / d) * v, std::asin(std::min(1.0, radius / d))};
+}
+
+double coneIrradiance(const Vec3& axis, double angle, const Vec3& normal, const Cap* occluder) {
+  const double a = 0.5 * angle;
+  const double nl = dot(normal, axis);
+  if (!(a > 0)) {
+    if (nl <= 0) return 0;
+    if (occluder && dot(axis, occluder->axis) > std::cos(occluder->radius)) return 0;
+    return nl;
+  }
+  if (!occluder) {  // the whole cone in front (pi sin^2 a (n . axis), normalized) or behind
+    const double thetaN = std::acos(std::clamp(nl, -1.0, 1.0));
+    if (thetaN + a <= 0.5 * kPi) return nl;
+    if (thetaN - a >= 0.5 * kPi) return 0;
+  }
+  const Frame f = frameAround(axis);
+  const double n1 = dot(normal, f.e1), n2 = dot(normal, f.e2), bn = std::sqrt(n1 * n1 + n2 * n2);
+  const double thetaN = angleBetween(nl, bn);  // the normal's angle from the axis
+  // The occluder matters when it overlaps the cone.
+  double cl = 0, c1 = 0, c2 = 0, bc = 0, beta = 0, g = 0, cosG = 1, cosDelta = 0;
+  bool occluded = false;
+  if (occluder) {
+    cl = dot(occluder->axis, axis), c1 = dot(occluder->axis, f.e1), c2 = dot(occluder->axis, f.e2);
+    bc = std::sqrt(c1 * c1 + c2 * c2);
+    beta = angleBetween(cl, bc);
+    g = occluder->radius, cosG = std::cos(g);
+    occluded = beta < a + g;
+    cosDelta = bc > 0 && bn > 0 ? (c1 * n1 + c2 * n2) / (bc * bn) : 0.0;
+  }
+  if (!occluded) {
+    if (thetaN + a <= 0.5 * kPi) return nl;  // the whole cone in front: pi sin^2 a (n . axis)
+    if (thetaN - a >= 0.5 * kPi) return 0;
+  }
+  // One ring at angle t from the axis: w = cos t axis + sin t (cos phi e1 + sin phi e2), and
+  // n . w = A + B cos(phi - phiN). Its integral over the ring's lit arc, less the occluded arc.
+  auto ring = [&](double t) {
+    const double ct = std::cos(t), st = std::sin(t);
+    const double A = nl * ct, B = bn * st;
+    double lit;
+    if (B <= std::abs(A)) {
+      lit = A > 0 ? 2 * kPi * A : 0.0;
+    } else {
+      const double psi = std::acos(std::clamp(-A / B, -1.0, 1.0));
+      lit = 2 * A * psi + 2 * B * std::sin(psi);
+    }
+    if (occluded) {
+      const double Ac = cl * ct, Bc = bc * st;
+      double psi;
+      if (Bc <= 1e-300)
+        psi = Ac >= cosG ? kPi : 0.0;
+      else
+        psi = std::acos(std::clamp((cosG - Ac) / Bc, -1.0, 1.0));
+      lit -= 2 * A * psi + 2 * B * cosDelta * std::sin(psi);
+    }
+    return std::max(0.0, lit) * st;
+  };
+  // Pieces split where an arc opens or closes: the horizon of the normal, the occluder's near and far edges.
+  std::array<double, 6> cuts{};
+  int count = 0;
+  cuts[count++] = 0;
+  auto cut = [&](double t) {
+    if (t > 0 && t < a) cuts[count++] = t;
+  };
+  cut(angleBetween(bn, std::abs(nl)));  // where the ring meets the horizon: tan t = |nl| / bn
+  if (occluded) cut(std::abs(beta - g)), cut(beta + g);
+  cuts[count++] = a;
+  for (int i = 1; i < count; ++i)  // a handful: insertion sort
+    for (int j = i; j > 0 && cuts[j] < cuts[j - 1]; --j) std::swap(cuts[j], cuts[j - 1]);
+  double sum = 0;
+  for (int i = 0; i + 1 < count; ++i)
+    if (cuts[i + 1] > cuts[i]) sum += smoothPiece(cuts[i], cuts[i + 1], ring);
+  const double sa = std::sin(a);
+  return sum / (kPi * sa * sa);
+}
+
+double coneGlossy(const Vec3& axis, double angle, const Vec3& reflected, int exponent) {
+  const double a = 0.5 * angle;
+  const double norm = (exponent + 1) / (2 * kPi);
+  auto lobe = [&](double c) {  // c^exponent by squaring (no pow: the add-on's module stays on glibc 2.28)
+    if (c <= 0) return 0.0;
+    double v = 1, b = c;
+    for (int e = exponent; e > 0; e >>= 1, b *= b)
+      if (e & 1) v *= b;
+    return v;
+  };
+  if (!(a > 0)) return norm * lobe(dot(reflected, axis));
+  const Frame f = frameAround(axis);
+  const double rl = dot(reflected, axis), r1 = dot(reflected, f.e1), r2 = dot(reflected, f.e2);
+  constexpr int kAround = 32;
+  auto ring = [&](double t) {
+    const double ct = std::cos(t), st = std::sin(t);
+    double s = 0;
+    for (int k = 0; k < kAround; ++k) {
+      const double phi = 2 * kPi * (k + 0.5) / kAround;
+      s += lobe(rl * ct + st * (r1 * std::cos(phi) + r2 * std::sin(phi)));
+    }
+    return s * (2 * kPi / kAround) * st;
+  };
+  double sum = 0;
+  for (int half = 0; half < 2; ++half) sum += smoothPiece(half * 0.5 * a, (half + 1) * 0.5 * a, ring);
+  const double sa = std::sin(a);
+  return norm * sum / (kPi * sa * sa);
+}
+
+}  // namespace probelights

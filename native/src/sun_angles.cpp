@@ -1,0 +1,127 @@
+#include "probelights/sun_angles.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <numeric>
+
+#include "parallel.h"
+#include "probelights/error.h"
+#include "probelights/names.h"
+
+namespace probelights {
+
+namespace {
+constexpr NameTable<SunAngles, 3> kSunAngles{
+    {{SunAngles::Fit, "fit"}, {SunAngles::Spread, "spread"}, {SunAngles::Points, "points"}}};
+
+constexpr double kSmallest =
+    0.5 * kPi / 180;  // the spread of a one-pixel region is ~0: start from half a degree
+}  // namespace
+
+std::string toString(SunAngles angles) { return std::string(nameOf(kSunAngles, angles)); }
+SunAngles parseSunAngles(const std::string& name) { return parseName(kSunAngles, "sun angles", name); }
+
+void fitSunAngles(const Evaluator& evaluator, std::vector<Light>& lights) {
+  if (!(evaluator.effects() & kShadow)) throw Error("fitting sun angles needs the shadow effect evaluated");
+  // The receivers: ground points under the sphere, and the diffuse normals if evaluated; each set weighted by
+  // 1 / its truth's sum of squares, so the objective is shadow error^2 + diffuse error^2.
+  struct Receiver {
+    Vec3 at;
+    bool ground;
+    double target, weight;
+  };
+  std::vector<Receiver> receivers;
+  auto add = [&](const std::vector<Vec3>& at, const std::vector<Rgb>& truth, bool ground) {
+    double sum = 0;
+    for (const Rgb& t : truth) sum += luminance(t) * luminance(t);
+    if (!(sum > 0)) return;
+    for (std::size_t k = 0; k < at.size(); ++k)
+      receivers.push_back({at[k], ground, luminance(truth[k]), 1 / sum});
+  };
+  add(evaluator.groundPoints(), evaluator.shadowTruth(), true);
+  if (evaluator.effects() & kDiffuse) add(evaluator.normals(), evaluator.diffuseTruth(), false);
+  const std::size_t m = receivers.size();
+  if (m == 0 || lights.empty()) return;
+
+  auto contribution = [&](const Light& l, std::vector<double>& out) {
+    const double y = luminance(l.rgb);
+    for (std::size_t k = 0; k < m; ++k) {
+      const Receiver& r = receivers[k];
+      out[k] = y * (r.ground ? Evaluator::shadowKernel(l, r.at) : Evaluator::diffuseKernel(l, r.at));
+    }
+  };
+  std::vector<std::vector<double>> terms(lights.size(), std::vector<double>(m));
+  parallelFor(static_cast<std::int64_t>(lights.size()),
+              [&](std::int64_t i) { contribution(lights[i], terms[i]); });
+  std::vector<double> sum(m, 0.0);
+  for (const auto& t : terms)
+    for (std::size_t k = 0; k < m; ++k) sum[k] += t[k];
+  // The objective with light i's term replaced by `term`.
+  auto objective = [&](const std::vector<double>& old, const std::vector<double>& term) {
+    double e = 0;
+    for (std::size_t k = 0; k < m; ++k) {
+      const double d = sum[k] - old[k] + term[k] - receivers[k].target;
+      e += receivers[k].weight * d * d;
+    }
+    return e;
+  };
+
+  std::vector<std::size_t> order(lights.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return luminance(lights[a].rgb) > luminance(lights[b].rgb);
+  });
+  for (int round = 0; round < 2; ++round)
+    for (std::size_t i : order) {
+      Light& light = lights[i];
+      if (!(luminance(light.rgb) > 0)) continue;
+      const double start = std::max(light.angularRadius, kSmallest);
+      // Candidates tried in parallel: each one's terms at every receiver.
+      auto tryAngles = [&](const std::vector<double>& angles) {
+        std::vector<std::vector<double>> t(angles.size(), std::vector<double>(m));
+        parallelFor(static_cast<std::int64_t>(angles.size()), [&](std::int64_t c) {
+          Light trial = light;
+          trial.angle = angles[c];
+          contribution(trial, t[c]);
+        });
+        std::size_t best = 0;
+        double bestError = objective(terms[i], terms[i]);
+        bool improved = false;
+        for (std::size_t c = 0; c < angles.size(); ++c) {
+          const double e = objective(terms[i], t[c]);
+          if (e < bestError) bestError = e, best = c, improved = true;
+        }
+        if (!improved) return false;
+        for (std::size_t k = 0; k < m; ++k) sum[k] += t[best][k] - terms[i][k];
+        terms[i].swap(t[best]);
+        light.angle = angles[best];
+        return true;
+      };
+      std::vector<double> coarse{0.0};
+      // Half-octave steps from start / 8 to start * 4 (no exp2 or pow: the add-on's module stays on glibc 2.28).
+      double step = start / 8;
+      for (int k = -6; k <= 4; ++k, step *= std::numbers::sqrt2) coarse.push_back(std::min(kPi, step));
+      tryAngles(coarse);
+      constexpr double kQuarterOctave = 1.189207115002721;  // 2^(1/4)
+      if (light.angle > 0)
+        tryAngles({light.angle / kQuarterOctave, std::min(kPi, light.angle * kQuarterOctave)});
+    }
+}
+
+bool applySunAngles(SunAngles choice, const Evaluator* evaluator, std::vector<Light>& lights) {
+  switch (choice) {
+    case SunAngles::Points:
+      for (Light& l : lights) l.angle = 0;
+      return false;
+    case SunAngles::Spread:
+      return false;
+    case SunAngles::Fit:
+      if (!evaluator || !(evaluator->effects() & kShadow)) return false;
+      fitSunAngles(*evaluator, lights);
+      return true;
+  }
+  return false;
+}
+
+}  // namespace probelights
