@@ -1,6 +1,8 @@
 """Does the estimate predict the render? The evaluator's shadow scene (a plane under a unit sphere, direct light;
-render_scene.ground_under_sphere) rendered by Cycles lit by the world and by N baked suns, for each sun-angle
-choice (points, spread, fit): the rendered relative RMS difference beside the add-on's estimate of it.
+render_scene.ground_under_sphere) rendered by Cycles lit by the world and by 16 and 64 baked suns, for each
+shadow choice (Hard: points; Region spread: the angle before issue 9; Fitted; Fitted with the refit): the rendered
+relative RMS difference beside the add-on's estimate of it, and the renders' noise (README table; for every probe:
+scripts/bench_shadow_table.sh).
 
     tests/blender/run.sh ~/.cache/probelights/bpy-4.5.15/bin/python scripts/bench_shadow_estimate.py \\
         build/probe_lights.zip ../shared [PROBE] [SAMPLES]
@@ -15,25 +17,27 @@ sys.path.insert(0, os.path.join(HERE, "..", "tests", "blender"))
 import harness  # noqa: E402
 import render_scene  # noqa: E402
 
-zip_path, probe, samples = harness.bench_args(samples=1024)
+zip_path, probe, samples = harness.bench_args(samples=4096 if bpy.app.version >= (4, 0, 0) else 16384)
 harness.install_addon(zip_path)
 harness.empty_scene()
-harness.env_world(bpy.data.images.load(probe))
+world_data = harness.env_world(bpy.data.images.load(probe))
+world_data.node_tree.nodes["Environment Texture"].interpolation = "Closest"  # the truth: the probe's pixels
 render_scene.ground_under_sphere(samples)
 world = render_scene.render()
 bpy.context.scene.cycles.seed = 2
-floor = render_scene.relative_rms(world, render_scene.render())
+floor = render_scene.relative_rms(world, render_scene.render()) / 2 ** 0.5
 bpy.context.scene.cycles.seed = 1
-print("ESTIMATE Blender %s, %s, %d spp: noise floor %.2f %%" % (
+print("ESTIMATE Blender %s, %s, %d spp: world noise %.2f %%" % (
     bpy.app.version_string, os.path.basename(probe), samples, 100 * floor))
 settings = bpy.context.scene.probe_lights
-for n in (8, 16, 64):
-    for shadows in ("HARD", "SPREAD", "FIT"):
-        bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=n, shadows=shadows)
+for n in (16, 64):
+    for shadows, refit in (("HARD", False), ("SPREAD", False), ("FIT", False), ("FIT", True)):
+        bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=n, shadows=shadows, refit=refit)
         lit = render_scene.render()
         rendered = render_scene.relative_rms(world, lit)
         bpy.context.scene.cycles.seed = 2
-        noise = render_scene.relative_rms(lit, render_scene.render())  # two seeds: sqrt(2) x one render's noise
+        noise = render_scene.relative_rms(lit, render_scene.render()) / 2 ** 0.5
         bpy.context.scene.cycles.seed = 1
-        print("ESTIMATE %3d suns %-6s: estimate %.2f %%, rendered %.2f %% (lamps' noise %.2f %%)" % (
-            n, shadows, settings.last_shadow_error, 100 * rendered, 100 * noise), flush=True)
+        print("ESTIMATE %3d suns %-6s%s: estimate %.2f %%, rendered %.2f %% (lamps' noise %.2f %%)" % (
+            n, shadows, " refit" if refit else "      ", settings.last_shadow_error, 100 * rendered, 100 * noise),
+            flush=True)

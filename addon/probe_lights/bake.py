@@ -13,6 +13,7 @@ import bpy
 import numpy as np
 
 from . import cycles_settings, eevee_settings, native, render_cost
+from .conversion import sun_profile
 from .errors import ProbeError
 from .light_objects import baked_worlds, make_lights, remove_collection_if_empty, remove_lights, world_collection
 from .properties import NATIVE_SUN_ANGLES
@@ -80,11 +81,15 @@ def bake_world(context, settings, progress=lambda fraction: None, rendered=None,
     # The errors are estimated on the probe grouped to 512 pixels wide: ~50 ms at any probe size.
     max_error = settings.max_error / 100.0 if settings.count_mode == "TOLERANCE" else 0.0
     try:
+        # With the refit, lights start at their regions' energy^2 centroids (towards the brightest light): with
+        # directions and colours refit, shadows came out closer on 15 probes of 15 at 16 suns (README).
         baked = native.bake(pixels, projection=projection, method=settings.method, lights=settings.count,
+                            centroid="energy2" if settings.refit else "energy",
                             resolution=settings.resolution, evaluate=True, effects="diffuse,shadow",
                             evaluator_width=512, refit=settings.refit, move_directions=settings.refit,
                             max_error=max_error, nonfinite=settings.non_finite,
-                            sun_angles=NATIVE_SUN_ANGLES[settings.shadows] if settings.light_type == "SUN" else "points")
+                            sun_angles=NATIVE_SUN_ANGLES[settings.shadows] if settings.light_type == "SUN" else "points",
+                            sun_profile=sun_profile(bpy.app.version))
     except ProbeError as e:
         message = str(e)
         if "; to read them as 0" in message:  # the module names the CLI's option; here it is the panel's

@@ -41,9 +41,17 @@ def colour_and_scale(rgb):
 
 
 MAX_SUN_ANGLE = math.radians(180.0)
+MAX_DISC_SUN_ANGLE = math.radians(178.0)  # a 3.x sun is a disc of radius tan(angle / 2): kept finite (the core too)
 
 
 NORMALIZED_SUN_SINCE = (4, 0, 0)  # measured: 3.4 disc; 4.5, 5.0, 5.2 normalized (3.5 to 4.4 not measured)
+
+
+def sun_profile(blender_version):
+    """How that Blender's Cycles spreads a sun's light over its angle, in the core's words (cone.h): a uniform cone
+    from 4.0 on; before, a disc of radius tan(angle / 2) at unit distance (radiance 1 / cos^3 of the angle from the
+    axis, which the renders of tests/blender/test_estimate.py confirm: the estimate and 3.4's render agree)."""
+    return "cone" if tuple(blender_version) >= NORMALIZED_SUN_SINCE else "disc"
 
 
 def sun_normal_irradiance(angle, blender_version):
@@ -61,7 +69,8 @@ def sun_parameters(direction, rgb, angle, blender_version):
     `angle`: the light's full cone angle from the core (radians; its `angle` column: fitted to the probe's shadows
     when they are evaluated, 0 for hard shadows), at most 180 degrees."""
     colour, irradiance = colour_and_scale(rgb)
-    angle = min(max(float(angle), 0.0), MAX_SUN_ANGLE)
+    widest = MAX_SUN_ANGLE if sun_profile(blender_version) == "cone" else MAX_DISC_SUN_ANGLE
+    angle = min(max(float(angle), 0.0), widest)
     factor = sun_normal_irradiance(angle, blender_version)
     return {"rotation": rotation_to_direction(direction), "color": colour,
             "energy": irradiance / factor if factor > 0 else 0.0, "angle": angle}

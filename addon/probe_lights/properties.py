@@ -46,9 +46,11 @@ def bake_settings():
         "max_error": FloatProperty(name="Max error", default=2.0, min=0.05, max=50.0, subtype="PERCENTAGE",
                                    description="Largest estimated diffuse/shadow error (relative RMS) to accept"),
         "non_finite": EnumProperty(name="NaN/Inf pixels", items=NON_FINITE, default="error"),
-        "refit": BoolProperty(name="Refit to diffuse", default=False,
-                              description="Re-solve the lights' colours and nudge their directions so their diffuse "
-                                          "light matches the world's (about halves the diffuse error at few lights)"),
+        "refit": BoolProperty(name="Refit", default=False,
+                              description="Place each light at its region's brightest light and refit the lights' "
+                                          "colours and directions so their diffuse light and shadows match the "
+                                          "world's (at 16 suns about a third of the diffuse error and two thirds of "
+                                          "the shadow error; slower: about 1 s at 4K)"),
     }
 
 

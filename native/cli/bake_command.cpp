@@ -42,6 +42,7 @@ BakeArgs parseBakeArgs(const std::vector<std::string>& argv) {
       {{"--max-error"}, [&](const std::string& v) { acc.maxError = parseTolerance("--max-error", v); }},
       {{"--effects"}, [&](const std::string& v) { acc.effects = parseEffects(v); }},
       {{"--sun-angles"}, [&](const std::string& v) { acc.sunAngles = parseSunAngles(v); }},
+      {{"--sun-profile"}, [&](const std::string& v) { acc.sunProfile = parseSunProfile(v); }},
       flag({"-q", "--quiet"}, [&] { a.quiet = true; }),
       flag({"--refit"}, [&] { acc.refit = true; }),
       flag({"--refit-directions"}, [&] { acc.refit = acc.moveDirections = true; }),

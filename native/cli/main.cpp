@@ -52,6 +52,8 @@ options:
   --evaluate                        evaluate the lights on --effects without choosing the count
   --sun-angles fit|spread|points    the lights' cone angles: fitted to the probe's shadows when shadows are
                                     evaluated (default), from each region's spread, or 0 (hard shadows)
+  --sun-profile cone|disc           the renderer's sun: a uniform cone (Cycles 4.0+, default) or a disc of
+                                    radius tan(angle / 2) (Cycles 3.x)
   -q, --quiet                       no summary on standard output
   (sh, sample: --projection and --nonfinite as above; JSON goes to -o FILE or standard output)
 )";

@@ -131,22 +131,26 @@ ImageView viewOf(Pixels& pixels) {
 }
 
 AccuracyOptions accuracyOptions(const std::string& effects, bool evaluate, bool refit, double maxError,
-                                int evaluatorWidth, bool moveDirections, const std::string& sunAngles) {
-  return {parseEffects(effects), evaluate,       refit || moveDirections,  maxError,
-          evaluatorWidth,        moveDirections, parseSunAngles(sunAngles)};
+                                int evaluatorWidth, bool moveDirections, const std::string& sunAngles,
+                                const std::string& sunProfile) {
+  AccuracyOptions a;
+  a.effects = parseEffects(effects), a.evaluate = evaluate, a.refit = refit || moveDirections;
+  a.maxError = maxError, a.evaluatorWidth = evaluatorWidth, a.moveDirections = moveDirections;
+  a.sunAngles = parseSunAngles(sunAngles), a.sunProfile = parseSunProfile(sunProfile);
+  return a;
 }
 
 py::dict bakePixels(Pixels pixels, const std::string& projection, const std::string& method, int lights,
                     const std::string& centroid, const std::string& resolution, bool horizon, int bands,
                     double epsilon, const std::string& effects, bool evaluate, bool refit,
                     bool moveDirections, double maxError, int evaluatorWidth, const std::string& sunAngles,
-                    const std::string& nonfinite) {
+                    const std::string& sunProfile, const std::string& nonfinite) {
   const ImageView view = viewOf(pixels);
   const auto kind = parseProjection(projection);
   const BakeOptions options = bakeOptions(method, lights, centroid, resolution, horizon, bands, epsilon);
   const NonFinitePolicy policy = parseNonFinitePolicy(nonfinite);
-  const AccuracyOptions accuracy =
-      accuracyOptions(effects, evaluate, refit, maxError, evaluatorWidth, moveDirections, sunAngles);
+  const AccuracyOptions accuracy = accuracyOptions(effects, evaluate, refit, maxError, evaluatorWidth,
+                                                   moveDirections, sunAngles, sunProfile);
   std::optional<Probe> probe;
   EvaluatedBake result;
   {
@@ -163,22 +167,23 @@ std::tuple<ProbeOptions, BakeOptions, AccuracyOptions> fileRequest(
     const std::string& projection, const std::string& method, int lights, const std::string& centroid,
     const std::string& resolution, bool horizon, int bands, double epsilon, const std::string& effects,
     bool evaluate, bool refit, bool moveDirections, double maxError, int evaluatorWidth,
-    const std::string& sunAngles, const std::string& nonfinite) {
+    const std::string& sunAngles, const std::string& sunProfile, const std::string& nonfinite) {
   ProbeOptions probe;
   probe.projection = parseProjectionChoice(projection);
   probe.nonFinite = parseNonFinitePolicy(nonfinite);
   return {probe, bakeOptions(method, lights, centroid, resolution, horizon, bands, epsilon),
-          accuracyOptions(effects, evaluate, refit, maxError, evaluatorWidth, moveDirections, sunAngles)};
+          accuracyOptions(effects, evaluate, refit, maxError, evaluatorWidth, moveDirections, sunAngles,
+                          sunProfile)};
 }
 
 py::dict bakeFile(const std::string& path, const std::string& projection, const std::string& method,
                   int lights, const std::string& centroid, const std::string& resolution, bool horizon,
                   int bands, double epsilon, const std::string& effects, bool evaluate, bool refit,
                   bool moveDirections, double maxError, int evaluatorWidth, const std::string& sunAngles,
-                  const std::string& nonfinite) {
-  const auto [probeOptions, options, accuracy] =
-      fileRequest(projection, method, lights, centroid, resolution, horizon, bands, epsilon, effects,
-                  evaluate, refit, moveDirections, maxError, evaluatorWidth, sunAngles, nonfinite);
+                  const std::string& sunProfile, const std::string& nonfinite) {
+  const auto [probeOptions, options, accuracy] = fileRequest(
+      projection, method, lights, centroid, resolution, horizon, bands, epsilon, effects, evaluate, refit,
+      moveDirections, maxError, evaluatorWidth, sunAngles, sunProfile, nonfinite);
   std::optional<Probe> probe;
   EvaluatedBake result;
   double loadMs = 0;
@@ -207,10 +212,10 @@ py::list bakeFiles(const std::vector<std::string>& inputs, const std::string& pr
                    const std::string& resolution, bool horizon, int bands, double epsilon,
                    const std::string& effects, bool evaluate, bool refit, bool moveDirections,
                    double maxError, int evaluatorWidth, const std::string& sunAngles,
-                   const std::string& nonfinite) {
-  const auto [probeOptions, options, accuracy] =
-      fileRequest(projection, method, lights, centroid, resolution, horizon, bands, epsilon, effects,
-                  evaluate, refit, moveDirections, maxError, evaluatorWidth, sunAngles, nonfinite);
+                   const std::string& sunProfile, const std::string& nonfinite) {
+  const auto [probeOptions, options, accuracy] = fileRequest(
+      projection, method, lights, centroid, resolution, horizon, bands, epsilon, effects, evaluate, refit,
+      moveDirections, maxError, evaluatorWidth, sunAngles, sunProfile, nonfinite);
   py::list out;
   {
     py::gil_scoped_release release;
@@ -246,7 +251,7 @@ py::list bakeFiles(const std::vector<std::string>& inputs, const std::string& pr
 // The tradeoff grid (tradeoff.h) in the layout of the CLI's tradeoff JSON (result_layout.h).
 py::dict tradeoffRows(Pixels pixels, const std::string& projection, const std::string& effects,
                       const std::vector<int>& counts, const std::vector<std::string>& methods, bool refit,
-                      int evaluatorWidth, const std::string& nonfinite) {
+                      int evaluatorWidth, const std::string& sunProfile, const std::string& nonfinite) {
   const ImageView view = viewOf(pixels);
   const auto kind = parseProjection(projection);
   const NonFinitePolicy policy = parseNonFinitePolicy(nonfinite);
@@ -262,7 +267,7 @@ py::dict tradeoffRows(Pixels pixels, const std::string& projection, const std::s
   {
     py::gil_scoped_release release;
     probe.emplace(view, kind, policy);
-    Evaluator evaluator(*probe, e, EvaluatorOptions{evaluatorWidth, refit});
+    Evaluator evaluator(*probe, e, EvaluatorOptions{evaluatorWidth, refit, parseSunProfile(sunProfile)});
     rows = tradeoff(*probe, evaluator, options);
   }
   py::dict d;
@@ -321,12 +326,13 @@ py::tuple shSample(Pixels pixels, int bands, double epsilon, int samples, int de
 }  // namespace
 
 // The options bake, bake_file and bake_files share (after the probe and its projection), in their order.
-#define PROBELIGHTS_BAKE_KWARGS                                                             \
-  py::arg("method") = "variance", py::arg("lights") = 16, py::arg("centroid") = "energy",   \
-  py::arg("resolution") = "auto", py::arg("horizon") = false, py::arg("bands") = 8,         \
-  py::arg("epsilon") = 0.01, py::arg("effects") = "diffuse", py::arg("evaluate") = false,   \
-  py::arg("refit") = false, py::arg("move_directions") = false, py::arg("max_error") = 0.0, \
-  py::arg("evaluator_width") = 2048, py::arg("sun_angles") = "fit", py::arg("nonfinite") = "error"
+#define PROBELIGHTS_BAKE_KWARGS                                                                      \
+  py::arg("method") = "variance", py::arg("lights") = 16, py::arg("centroid") = "energy",            \
+  py::arg("resolution") = "auto", py::arg("horizon") = false, py::arg("bands") = 8,                  \
+  py::arg("epsilon") = 0.01, py::arg("effects") = "diffuse", py::arg("evaluate") = false,            \
+  py::arg("refit") = false, py::arg("move_directions") = false, py::arg("max_error") = 0.0,          \
+  py::arg("evaluator_width") = 2048, py::arg("sun_angles") = "fit", py::arg("sun_profile") = "cone", \
+  py::arg("nonfinite") = "error"
 
 PYBIND11_MODULE(_probelights, m) {
   m.doc() = "probelights: turn an HDR light probe into N lights that carry exactly its energy";
@@ -335,7 +341,7 @@ PYBIND11_MODULE(_probelights, m) {
       "tradeoff", &tradeoffRows, py::arg("pixels"), py::kw_only(), py::arg("projection") = "latlong",
       py::arg("effects") = "diffuse,shadow", py::arg("counts") = std::vector<int>{4, 8, 16, 32, 64, 128, 256},
       py::arg("methods") = std::vector<std::string>{"median-cut", "variance", "sh"}, py::arg("refit") = true,
-      py::arg("evaluator_width") = 2048, py::arg("nonfinite") = "error",
+      py::arg("evaluator_width") = 2048, py::arg("sun_profile") = "cone", py::arg("nonfinite") = "error",
       "What accuracy costs in time, in the layout of the CLI's tradeoff JSON: source, effects, error, and "
       "rows: a dict of columns (method, lights, made, resolution, refit, bake_ms, each effect's error), one "
       "entry per (method, count, refit).");

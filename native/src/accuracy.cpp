@@ -10,6 +10,47 @@
 
 namespace probelights {
 
+namespace {
+// The weighted squared residual of the lights' luminance on the receivers (each set's relative error^2).
+double fitError(const Evaluator& evaluator, const std::vector<Receiver>& receivers,
+                const std::vector<Light>& lights) {
+  double e = 0;
+  for (const Receiver& r : receivers) {
+    double y = 0;
+    for (const Light& l : lights) y += luminance(l.rgb) * evaluator.kernel(l, r);
+    const double d = y - luminance(r.truth);
+    e += r.weight * d * d;
+  }
+  return e;
+}
+}  // namespace
+
+std::vector<Light> finishLights(const Evaluator& evaluator, std::vector<Light> lights, bool refit,
+                                bool moveDirections, SunAngles angles, double* energyShift) {
+  double before = 0;
+  for (const Light& l : lights) before += l.rgb[0] + l.rgb[1] + l.rgb[2];
+  // Angles first, so the directions move for the shadows the lights will cast; then again for the moved
+  // lights, and their colours for those angles. The refit is kept only if it fits the fit receivers better
+  // (the joint fit can lose on shadows what it wins on shading).
+  const bool fitted = applySunAngles(angles, &evaluator, lights);
+  if (refit) {
+    std::vector<Light> moved = refitIrradiance(evaluator, lights, nullptr, moveDirections);
+    if (fitted) {
+      applySunAngles(angles, &evaluator, moved);
+      moved = refitIrradiance(evaluator, moved);
+    }
+    const std::vector<Receiver> receivers = evaluator.fitReceivers();
+    if (fitError(evaluator, receivers, moved) <= fitError(evaluator, receivers, lights))
+      lights = std::move(moved);
+  }
+  if (energyShift) {
+    double after = 0;
+    for (const Light& l : lights) after += l.rgb[0] + l.rgb[1] + l.rgb[2];
+    *energyShift = before > 0 ? after / before - 1.0 : 0.0;
+  }
+  return lights;
+}
+
 AutoCountResult autoCount(const Probe& probe, const Evaluator& evaluator, BakeOptions options,
                           double tolerance, bool refit, int maxLights, bool moveDirections,
                           const WorkingGrid* grid, SunAngles angles) {
@@ -21,9 +62,8 @@ AutoCountResult autoCount(const Probe& probe, const Evaluator& evaluator, BakeOp
   auto attempt = [&](int n) {
     options.lights = n;
     BakeResult r = grid->bake(probe, options);
-    if (refit && r.lights.size() <= kMaxRefitLights)
-      r.lights = refitIrradiance(evaluator, r.lights, nullptr, moveDirections);
-    applySunAngles(angles, &evaluator, r.lights);
+    r.lights = finishLights(evaluator, std::move(r.lights), refit && r.lights.size() <= kMaxRefitLights,
+                            moveDirections, angles);
     EffectErrors e = evaluator.evaluate(r.lights);
     best.tried.push_back({n, e.worst(evaluator.effects())});
     return std::pair{std::move(r), e};
@@ -103,7 +143,7 @@ EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOpt
   }
   // One working grid for the bakes and the evaluator's samples (no second pass over the pixels).
   const WorkingGrid grid(probe, options);
-  const EvaluatorOptions evaluatorOptions{a.evaluatorWidth, a.refit};
+  const EvaluatorOptions evaluatorOptions{a.evaluatorWidth, a.refit, a.sunProfile};
   const Evaluator evaluator = grid.table() ? Evaluator(probe, *grid.table(), a.effects, evaluatorOptions)
                                            : Evaluator(probe, a.effects, evaluatorOptions);
   if (a.maxError > 0) {
@@ -124,17 +164,16 @@ EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOpt
   } else {
     out.bake = grid.bake(probe, options);
     out.count = options.lights;
-    if (a.refit) {
-      if (out.bake.lights.size() > kMaxRefitLights)
-        throw Error("the refit takes at most " + std::to_string(kMaxRefitLights) + " lights");
-      out.bake.lights = refitIrradiance(evaluator, out.bake.lights, &out.energyShift, a.moveDirections);
-    }
-    applySunAngles(a.sunAngles, &evaluator, out.bake.lights);
+    if (a.refit && out.bake.lights.size() > kMaxRefitLights)
+      throw Error("the refit takes at most " + std::to_string(kMaxRefitLights) + " lights");
+    out.bake.lights = finishLights(evaluator, std::move(out.bake.lights), a.refit, a.moveDirections,
+                                   a.sunAngles, &out.energyShift);
   }
   out.evaluated = true;
   out.refit = a.refit;
   out.effects = a.effects;
   out.sunAngles = a.sunAngles == SunAngles::Fit && !(a.effects & kShadow) ? SunAngles::Spread : a.sunAngles;
+  out.sunProfile = a.sunProfile;
   out.errors = evaluator.evaluate(out.bake.lights);
   return out;
 }

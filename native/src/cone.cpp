@@ -5,9 +5,23 @@
 #include <cmath>
 #include <vector>
 
+#include "probelights/names.h"
+
 namespace probelights {
 
 namespace {
+constexpr NameTable<SunProfile, 2> kProfiles{{{SunProfile::Cone, "cone"}, {SunProfile::TangentDisc, "disc"}}};
+constexpr double kMaxDiscHalfAngle = 89 * kPi / 180;
+
+// The profile's radiance weight at angle t from the axis, and its facing irradiance over a cone of
+// half-angle a: 2 pi integral of cos t sin t w(t) dt.
+double profileWeight(SunProfile p, double cosT) {
+  return p == SunProfile::Cone ? 1.0 : 1 / (cosT * cosT * cosT);
+}
+double facingIrradiance(SunProfile p, double a) {
+  if (p == SunProfile::Cone) return kPi * std::sin(a) * std::sin(a);
+  return 2 * kPi * (1 / std::cos(a) - 1);
+}
 
 // n-point Gauss-Legendre on [0, 1] (Newton on the Legendre polynomial's roots).
 struct GaussLegendre {
@@ -68,14 +82,18 @@ double smoothPiece(double t0, double t1, F&& f) {
 
 }  // namespace
 
+std::string toString(SunProfile profile) { return std::string(nameOf(kProfiles, profile)); }
+SunProfile parseSunProfile(const std::string& name) { return parseName(kProfiles, "sun profile", name); }
+
 Cap sphereCap(const Vec3& point, const Vec3& centre, double radius) {
   const Vec3 v = centre - point;
   const double d = v.length();
   return {(1.0 / d) * v, std::asin(std::min(1.0, radius / d))};
 }
 
-double coneIrradiance(const Vec3& axis, double angle, const Vec3& normal, const Cap* occluder) {
-  const double a = 0.5 * angle;
+double coneIrradiance(const Vec3& axis, double angle, const Vec3& normal, const Cap* occluder,
+                      SunProfile profile) {
+  const double a = profile == SunProfile::Cone ? 0.5 * angle : std::min(0.5 * angle, kMaxDiscHalfAngle);
   const double nl = dot(normal, axis);
   if (!(a > 0)) {
     if (nl <= 0) return 0;
@@ -126,7 +144,7 @@ double coneIrradiance(const Vec3& axis, double angle, const Vec3& normal, const 
         psi = std::acos(std::clamp((cosG - Ac) / Bc, -1.0, 1.0));
       lit -= 2 * A * psi + 2 * B * cosDelta * std::sin(psi);
     }
-    return std::max(0.0, lit) * st;
+    return std::max(0.0, lit) * st * profileWeight(profile, ct);
   };
   // Pieces split where an arc opens or closes: the horizon of the normal, the occluder's near and far edges.
   std::array<double, 6> cuts{};
@@ -143,12 +161,11 @@ double coneIrradiance(const Vec3& axis, double angle, const Vec3& normal, const 
   double sum = 0;
   for (int i = 0; i + 1 < count; ++i)
     if (cuts[i + 1] > cuts[i]) sum += smoothPiece(cuts[i], cuts[i + 1], ring);
-  const double sa = std::sin(a);
-  return sum / (kPi * sa * sa);
+  return sum / facingIrradiance(profile, a);
 }
 
-double coneGlossy(const Vec3& axis, double angle, const Vec3& reflected, int exponent) {
-  const double a = 0.5 * angle;
+double coneGlossy(const Vec3& axis, double angle, const Vec3& reflected, int exponent, SunProfile profile) {
+  const double a = profile == SunProfile::Cone ? 0.5 * angle : std::min(0.5 * angle, kMaxDiscHalfAngle);
   const double norm = (exponent + 1) / (2 * kPi);
   auto lobe = [&](double c) {  // c^exponent by squaring (no pow: the add-on's module stays on glibc 2.28)
     if (c <= 0) return 0.0;
@@ -168,12 +185,11 @@ double coneGlossy(const Vec3& axis, double angle, const Vec3& reflected, int exp
       const double phi = 2 * kPi * (k + 0.5) / kAround;
       s += lobe(rl * ct + st * (r1 * std::cos(phi) + r2 * std::sin(phi)));
     }
-    return s * (2 * kPi / kAround) * st;
+    return s * (2 * kPi / kAround) * st * profileWeight(profile, ct);
   };
   double sum = 0;
   for (int half = 0; half < 2; ++half) sum += smoothPiece(half * 0.5 * a, (half + 1) * 0.5 * a, ring);
-  const double sa = std::sin(a);
-  return norm * sum / (kPi * sa * sa);
+  return norm * sum / facingIrradiance(profile, a);
 }
 
 }  // namespace probelights

@@ -114,7 +114,7 @@ void Evaluator::addSample(const Rgb& rgb, const Vec3& moment) {
 }
 
 Evaluator::Evaluator(const Probe& probe, const MomentTable* grid, Effects effects, EvaluatorOptions options)
-    : effects_(effects) {
+    : effects_(effects), profile_(options.sunProfile) {
   // Probe samples: pixels, or cells of whole pixels for probes wider than options.maxWidth.
   const int maxWidth = std::max(1, options.maxWidth);
   const int cell = std::max(1, (probe.width() + maxWidth - 1) / maxWidth);
@@ -166,9 +166,11 @@ Evaluator::Evaluator(const Probe& probe, const MomentTable* grid, Effects effect
     for (int i = 0; i < 16; ++i)
       for (int j = 0; j < 16; ++j)
         points_.push_back({-2.5 + 5.0 * (i + 0.5) / 16, -2.5 + 5.0 * (j + 0.5) / 16, 0.0});
-    shadow_ = truthAt(directions_, radiance_, points_.size(), [&](std::size_t i, const Vec3& d) {
-      return d.z > 0 && visible(points_[i], d) ? d.z : 0.0;
-    });
+    shadow_ = shadowTruthAt(points_);
+    for (int i = 0; i < 20; ++i)
+      for (int j = 0; j < 20; ++j)
+        fitPoints_.push_back({-2.5 + 5.0 * (i + 0.5) / 20, -2.5 + 5.0 * (j + 0.5) / 20, 0.0});
+    fitShadow_ = shadowTruthAt(fitPoints_);
   }
   if (effects & kGlossy)
     for (int e = 0; e < 2; ++e)
@@ -177,20 +179,96 @@ Evaluator::Evaluator(const Probe& probe, const MomentTable* grid, Effects effect
       });
 }
 
-double Evaluator::diffuseKernel(const Light& l, const Vec3& n) {
-  return l.angle > 0 ? coneIrradiance(l.direction, l.angle, n) : std::max(0.0, dot(n, l.direction));
+// A ground point's truth is the upper hemisphere's irradiance less what the sphere hides: the samples inside
+// the sphere's cap seen from the point. The samples above the horizon are binned by (z, azimuth), so each point
+// visits only the bins the cap's bounding box touches (a few percent of the samples) and tests those exactly.
+std::vector<Rgb> Evaluator::shadowTruthAt(const std::vector<Vec3>& points) const {
+  constexpr int kBandsZ = 128, kBinsPhi = 256;
+  auto binOf = [&](const Vec3& d) {
+    const int z = std::min(kBandsZ - 1, static_cast<int>(d.z * kBandsZ));
+    const double u = (std::atan2(d.y, d.x) + kPi) / (2 * kPi);
+    return z * kBinsPhi + std::min(kBinsPhi - 1, static_cast<int>(u * kBinsPhi));
+  };
+  std::vector<int> start(kBandsZ * kBinsPhi + 1, 0);
+  Rgb upper{};
+  for (std::size_t k = 0; k < directions_.size(); ++k)
+    if (directions_[k].z > 0) {
+      ++start[binOf(directions_[k]) + 1];
+      for (int c = 0; c < 3; ++c) upper[c] += radiance_[k][c] * directions_[k].z;
+    }
+  for (std::size_t b = 1; b < start.size(); ++b) start[b] += start[b - 1];
+  std::vector<Vec3> dir(start.back());
+  std::vector<Rgb> rad(start.back());
+  {
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (std::size_t k = 0; k < directions_.size(); ++k)
+      if (directions_[k].z > 0) {
+        const int at = fill[binOf(directions_[k])]++;
+        dir[at] = directions_[k], rad[at] = radiance_[k];
+      }
+  }
+  std::vector<Rgb> out(points.size());
+  parallelFor(static_cast<std::int64_t>(points.size()), [&](std::int64_t i) {
+    const Cap cap = sphereCap(points[i], {0, 0, 1}, 1.0);
+    const double cosG = std::cos(cap.radius), theta = std::acos(std::clamp(cap.axis.z, -1.0, 1.0));
+    const double zLo = std::cos(std::min(0.5 * kPi, theta + cap.radius));
+    const bool pole = theta <= cap.radius;  // the cap holds the zenith: every azimuth
+    const double zHi = pole ? 1.0 : std::cos(theta - cap.radius);
+    int phiFirst = 0, phiCount = kBinsPhi;
+    if (!pole) {
+      const double half = std::asin(std::min(1.0, std::sin(cap.radius) / std::sin(theta)));
+      const double u0 = (std::atan2(cap.axis.y, cap.axis.x) - half + kPi) / (2 * kPi);
+      phiFirst = static_cast<int>(std::floor(u0 * kBinsPhi));
+      phiCount = std::min(kBinsPhi, static_cast<int>(std::ceil(2 * half / (2 * kPi) * kBinsPhi)) + 2);
+    }
+    Rgb hidden{};
+    const int z0 = std::max(0, static_cast<int>(zLo * kBandsZ)),
+              z1 = std::min(kBandsZ - 1, int(zHi * kBandsZ));
+    for (int z = z0; z <= z1; ++z)
+      for (int j = 0; j < phiCount; ++j) {
+        const int b = z * kBinsPhi + ((phiFirst + j) % kBinsPhi + kBinsPhi) % kBinsPhi;
+        for (int k = start[b]; k < start[b + 1]; ++k)
+          if (dot(dir[k], cap.axis) > cosG)
+            for (int c = 0; c < 3; ++c) hidden[c] += rad[k][c] * dir[k].z;
+      }
+    for (int c = 0; c < 3; ++c) out[i][c] = upper[c] - hidden[c];
+  });
+  return out;
 }
 
-double Evaluator::shadowKernel(const Light& l, const Vec3& p) {
+std::vector<Receiver> Evaluator::fitReceivers() const {
+  std::vector<Receiver> out;
+  auto add = [&](const std::vector<Vec3>& at, const std::vector<Rgb>& truth, bool ground) {
+    double sum = 0;
+    for (const Rgb& t : truth) sum += luminance(t) * luminance(t);
+    if (!(sum > 0)) return;
+    for (std::size_t k = 0; k < at.size(); ++k) out.push_back({at[k], ground, truth[k], 1 / sum});
+  };
+  if (!fitNormals_.empty())
+    add(fitNormals_, fitTruth_, false);
+  else if (!diffuse_.empty())
+    add(normals_, diffuse_, false);
+  add(fitPoints_, fitShadow_, true);
+  return out;
+}
+
+double Evaluator::maxSunAngle() const { return profile_ == SunProfile::Cone ? kPi : 178 * kPi / 180; }
+
+double Evaluator::diffuseKernel(const Light& l, const Vec3& n) const {
+  return l.angle > 0 ? coneIrradiance(l.direction, l.angle, n, nullptr, profile_)
+                     : std::max(0.0, dot(n, l.direction));
+}
+
+double Evaluator::shadowKernel(const Light& l, const Vec3& p) const {
   if (l.angle > 0) {
     const Cap sphere = sphereCap(p, {0, 0, 1}, 1.0);
-    return coneIrradiance(l.direction, l.angle, {0, 0, 1}, &sphere);
+    return coneIrradiance(l.direction, l.angle, {0, 0, 1}, &sphere, profile_);
   }
   return l.direction.z > 0 && visible(p, l.direction) ? l.direction.z : 0.0;
 }
 
-double Evaluator::glossyKernel(const Light& l, const Vec3& r, int exponent) {
-  if (l.angle > 0) return coneGlossy(l.direction, l.angle, r, exponent);
+double Evaluator::glossyKernel(const Light& l, const Vec3& r, int exponent) const {
+  if (l.angle > 0) return coneGlossy(l.direction, l.angle, r, exponent, profile_);
   return (exponent + 1) / (2 * kPi) * lobe(dot(r, l.direction), exponent);
 }
 
@@ -207,15 +285,15 @@ Rgb sumOver(const std::vector<Light>& lights, Kernel&& kernel) {
 }
 }  // namespace
 
-Rgb Evaluator::lightsDiffuse(const std::vector<Light>& lights, const Vec3& n) {
+Rgb Evaluator::lightsDiffuse(const std::vector<Light>& lights, const Vec3& n) const {
   return sumOver(lights, [&](const Light& l) { return diffuseKernel(l, n); });
 }
 
-Rgb Evaluator::lightsShadow(const std::vector<Light>& lights, const Vec3& p) {
+Rgb Evaluator::lightsShadow(const std::vector<Light>& lights, const Vec3& p) const {
   return sumOver(lights, [&](const Light& l) { return shadowKernel(l, p); });
 }
 
-Rgb Evaluator::lightsGlossy(const std::vector<Light>& lights, const Vec3& r, int exponent) {
+Rgb Evaluator::lightsGlossy(const std::vector<Light>& lights, const Vec3& r, int exponent) const {
   return sumOver(lights, [&](const Light& l) { return glossyKernel(l, r, exponent); });
 }
 

@@ -17,17 +17,17 @@ Vec3 rotateAbout(const Vec3& d, const Vec3& axis, double angle) {  // Rodrigues'
   return std::cos(angle) * d + std::sin(angle) * kxd + (dot(k, d) * (1 - std::cos(angle))) * k;
 }
 
-// Coordinate descent on the lights' directions against the luminance irradiance on the fit normals, colours
-// fixed. The sum of the lights' irradiance per normal is kept, so a trial move of one light costs one pass
-// over the normals.
-void moveDirections(const std::vector<Vec3>& normals, const std::vector<Rgb>& truth,
+// Coordinate descent on the lights' directions against the receivers' luminance (weighted: each set's relative
+// error^2), colours fixed. The sum of the lights' answers per receiver is kept, so a trial move of one light
+// costs one pass over the receivers.
+void moveDirections(const Evaluator& evaluator, const std::vector<Receiver>& receivers,
                     std::vector<Light>& lights) {
-  const std::size_t m = normals.size();
+  const std::size_t m = receivers.size();
   std::vector<double> target(m), sum(m, 0.0), term(m), trial(m);
-  for (std::size_t i = 0; i < m; ++i) target[i] = luminance(truth[i]);
+  for (std::size_t i = 0; i < m; ++i) target[i] = luminance(receivers[i].truth);
   auto contribution = [&](const Light& l, std::vector<double>& out) {
     const double y = luminance(l.rgb);
-    for (std::size_t i = 0; i < m; ++i) out[i] = y * Evaluator::diffuseKernel(l, normals[i]);
+    for (std::size_t i = 0; i < m; ++i) out[i] = y * evaluator.kernel(l, receivers[i]);
   };
   for (const Light& l : lights) {
     contribution(l, term);
@@ -35,7 +35,7 @@ void moveDirections(const std::vector<Vec3>& normals, const std::vector<Rgb>& tr
   }
   auto error = [&](const std::vector<double>& s) {
     double e = 0;
-    for (std::size_t i = 0; i < m; ++i) e += (s[i] - target[i]) * (s[i] - target[i]);
+    for (std::size_t i = 0; i < m; ++i) e += receivers[i].weight * (s[i] - target[i]) * (s[i] - target[i]);
     return e;
   };
   double current = error(sum);
@@ -61,30 +61,34 @@ void moveDirections(const std::vector<Vec3>& normals, const std::vector<Rgb>& tr
 
 std::vector<Light> refitIrradiance(const Evaluator& evaluator, const std::vector<Light>& lights,
                                    double* energyShift, bool moveDirs) {
-  // Fitted on 1024 normals, not the 256 the error is measured on, so the error of a refit is not flattered.
-  const auto& normals = evaluator.fitNormals();
-  const auto& truth = evaluator.fitTruth();
-  if (truth.empty()) throw Error("the irradiance refit needs an evaluator made for it (diffuse, forRefit)");
+  // Fitted on the evaluator's fit receivers (1024 normals, and 400 ground points with shadows), not the points
+  // the error is measured on, so the error of a refit is not flattered.
+  if (evaluator.fitNormals().empty())
+    throw Error("the irradiance refit needs an evaluator made for it (diffuse, forRefit)");
+  const std::vector<Receiver> receivers = evaluator.fitReceivers();
   if (lights.size() > kMaxRefitLights)
     throw Error("the irradiance refit takes at most " + std::to_string(kMaxRefitLights) + " lights, got " +
                 std::to_string(lights.size()));
-  const int m = static_cast<int>(normals.size()), n = static_cast<int>(lights.size());
+  const int m = static_cast<int>(receivers.size()), n = static_cast<int>(lights.size());
   std::vector<Light> out = lights;
   if (n == 0) return out;
+  // Weighted least squares: each row scaled by the square root of its set's weight.
   auto solveColours = [&](std::vector<Light>& ls) {
     std::vector<double> A(static_cast<std::size_t>(m) * n);
-    for (int i = 0; i < m; ++i)
-      for (int j = 0; j < n; ++j) A[i * n + j] = Evaluator::diffuseKernel(ls[j], normals[i]);
+    parallelFor(m, [&](std::int64_t i) {
+      const double w = std::sqrt(receivers[i].weight);
+      for (int j = 0; j < n; ++j) A[i * n + j] = w * evaluator.kernel(ls[j], receivers[i]);
+    });
     for (int c = 0; c < 3; ++c) {
       std::vector<double> b(m);
-      for (int i = 0; i < m; ++i) b[i] = truth[i][c];
+      for (int i = 0; i < m; ++i) b[i] = std::sqrt(receivers[i].weight) * receivers[i].truth[c];
       std::vector<double> x = nonNegativeLeastSquares(A, m, n, b);
       for (int j = 0; j < n; ++j) ls[j].rgb[c] = x[j];
     }
   };
   solveColours(out);
   for (int round = 0; moveDirs && round < 3; ++round) {
-    moveDirections(normals, truth, out);
+    moveDirections(evaluator, receivers, out);
     solveColours(out);
   }
   double before = 0, after = 0;

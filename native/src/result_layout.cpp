@@ -15,6 +15,7 @@ void writeEvaluation(ResultWriter& w, const EvaluatedBake& e) {
   if (e.effects & kGlossy) w.number("glossy", e.errors.glossy);
   if (e.refit && !e.autoCount) w.number("energy_shift", e.energyShift);
   w.text("sun_angles", toString(e.sunAngles));
+  w.text("sun_profile", toString(e.sunProfile));
   if (e.autoCount) {
     w.begin("auto_count");
     w.boolean("met", e.met);

@@ -24,31 +24,16 @@ SunAngles parseSunAngles(const std::string& name) { return parseName(kSunAngles,
 
 void fitSunAngles(const Evaluator& evaluator, std::vector<Light>& lights) {
   if (!(evaluator.effects() & kShadow)) throw Error("fitting sun angles needs the shadow effect evaluated");
-  // The receivers: ground points under the sphere, and the diffuse normals if evaluated; each set weighted by
-  // 1 / its truth's sum of squares, so the objective is shadow error^2 + diffuse error^2.
-  struct Receiver {
-    Vec3 at;
-    bool ground;
-    double target, weight;
-  };
-  std::vector<Receiver> receivers;
-  auto add = [&](const std::vector<Vec3>& at, const std::vector<Rgb>& truth, bool ground) {
-    double sum = 0;
-    for (const Rgb& t : truth) sum += luminance(t) * luminance(t);
-    if (!(sum > 0)) return;
-    for (std::size_t k = 0; k < at.size(); ++k)
-      receivers.push_back({at[k], ground, luminance(truth[k]), 1 / sum});
-  };
-  add(evaluator.groundPoints(), evaluator.shadowTruth(), true);
-  if (evaluator.effects() & kDiffuse) add(evaluator.normals(), evaluator.diffuseTruth(), false);
+  // The fit receivers (evaluate.h): ground points under the sphere and normals, each set weighted so the
+  // objective is shadow error^2 + diffuse error^2 (on points the errors are not measured on).
+  const std::vector<Receiver> receivers = evaluator.fitReceivers();
   const std::size_t m = receivers.size();
   if (m == 0 || lights.empty()) return;
 
   auto contribution = [&](const Light& l, std::vector<double>& out) {
     const double y = luminance(l.rgb);
     for (std::size_t k = 0; k < m; ++k) {
-      const Receiver& r = receivers[k];
-      out[k] = y * (r.ground ? Evaluator::shadowKernel(l, r.at) : Evaluator::diffuseKernel(l, r.at));
+      out[k] = y * evaluator.kernel(l, receivers[k]);
     }
   };
   std::vector<std::vector<double>> terms(lights.size(), std::vector<double>(m));
@@ -61,12 +46,13 @@ void fitSunAngles(const Evaluator& evaluator, std::vector<Light>& lights) {
   auto objective = [&](const std::vector<double>& old, const std::vector<double>& term) {
     double e = 0;
     for (std::size_t k = 0; k < m; ++k) {
-      const double d = sum[k] - old[k] + term[k] - receivers[k].target;
+      const double d = sum[k] - old[k] + term[k] - luminance(receivers[k].truth);
       e += receivers[k].weight * d * d;
     }
     return e;
   };
 
+  const double widest = evaluator.maxSunAngle();
   std::vector<std::size_t> order(lights.size());
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
@@ -101,11 +87,11 @@ void fitSunAngles(const Evaluator& evaluator, std::vector<Light>& lights) {
       std::vector<double> coarse{0.0};
       // Half-octave steps from start / 8 to start * 4 (no exp2 or pow: the add-on's module stays on glibc 2.28).
       double step = start / 8;
-      for (int k = -6; k <= 4; ++k, step *= std::numbers::sqrt2) coarse.push_back(std::min(kPi, step));
+      for (int k = -6; k <= 4; ++k, step *= std::numbers::sqrt2) coarse.push_back(std::min(widest, step));
       tryAngles(coarse);
       constexpr double kQuarterOctave = 1.189207115002721;  // 2^(1/4)
       if (light.angle > 0)
-        tryAngles({light.angle / kQuarterOctave, std::min(kPi, light.angle * kQuarterOctave)});
+        tryAngles({light.angle / kQuarterOctave, std::min(widest, light.angle * kQuarterOctave)});
     }
 }
 

@@ -31,11 +31,14 @@ std::vector<TradeoffRow> tradeoff(const Probe& probe, const Evaluator& evaluator
         BakeResult r = grid.bake(probe, b);
         const auto resName =
             method == Method::SphericalHarmonics ? std::nullopt : std::optional<WorkingResolution>(res);
-        rows.push_back({method, n, static_cast<int>(r.lights.size()), resName, false, bakeMs(r),
-                        evaluator.evaluate(r.lights)});
+        // A row's time includes what finishing its lights took (the angle fit, the refit).
+        Stopwatch plain;
+        const auto lights = finishLights(evaluator, r.lights, false, false, o.sunAngles);
+        rows.push_back({method, n, static_cast<int>(lights.size()), resName, false, bakeMs(r) + plain.ms(),
+                        evaluator.evaluate(lights)});
         if (o.refit && (evaluator.effects() & kDiffuse) && r.lights.size() <= kMaxRefitLights) {
           Stopwatch t;
-          auto refit = refitIrradiance(evaluator, r.lights, nullptr, /*moveDirections=*/true);
+          auto refit = finishLights(evaluator, r.lights, true, /*moveDirections=*/true, o.sunAngles);
           rows.push_back({method, n, static_cast<int>(refit.size()), resName, true, bakeMs(r) + t.ms(),
                           evaluator.evaluate(refit)});
         }

@@ -31,6 +31,8 @@ expect_error "unknown method" "unknown method" bake "$probe" --method magic
 expect_error "unknown option" "unknown option" bake "$probe" --frobnicate
 expect_error "no probe" "no probe" bake
 expect_error "unknown command" "unknown command" frobnicate
+expect_error "unknown sun angles" "unknown sun angles 'soft'" bake "$probe" --sun-angles soft
+expect_error "unknown sun profile" "unknown sun profile" bake "$probe" --sun-profile round
 # A 2x2 PFM: square, so auto projection must ask; with a NaN, refused unless --nonfinite=zero.
 printf 'PF\n2 2\n-1.0\n' >"$tmp/square.pfm"
 python3 -c "import struct,sys; sys.stdout.buffer.write(struct.pack('<12f', *([1.0]*12)))" >>"$tmp/square.pfm"
@@ -51,7 +53,7 @@ d = json.load(open(sys.argv[1]))
 assert set(d['source']) >= {'path', 'width', 'height', 'projection'}, d['source']
 assert d['method'] == 'median-cut' and len(d['lights']) == 8
 for l in d['lights']:
-    assert set(l) >= {'direction', 'rgb', 'solid_angle', 'angular_radius', 'rect', 'energy_share'}
+    assert set(l) >= {'direction', 'rgb', 'solid_angle', 'angular_radius', 'angle', 'rect', 'energy_share'}
     assert abs(math.hypot(*l['direction']) - 1) < 1e-9
 assert set(d['timings_ms']) >= {'load', 'tables', 'partition'}
 for k in range(3):
@@ -130,5 +132,14 @@ printf 'PF\n16 8\n-1.0\n' >"$tmp/nan8.pfm"
 python3 -c "import struct,sys; v=[1.0]*384; v[300]=float('nan'); sys.stdout.buffer.write(struct.pack('<384f', *v))" >>"$tmp/nan8.pfm"
 expect_error "NaN pixels, read band by band" "1 NaN/Inf samples, first at pixel (4, 1)" bake "$tmp/nan8.pfm" --resolution 4
 
+check "fitted sun angles, points and the profile in the JSON" "'$bin' bake '$probe' --lights 8 --effects diffuse,shadow --evaluate -q -o '$tmp/fit.json' && '$bin' bake '$probe' --lights 8 --effects diffuse,shadow --evaluate --sun-angles points --sun-profile disc -q -o '$tmp/pts.json' && python3 - '$tmp/fit.json' '$tmp/pts.json' <<'PY'
+import json, math, sys
+fit, pts = (json.load(open(p)) for p in sys.argv[1:])
+assert fit['evaluation']['sun_angles'] == 'fit' and fit['evaluation']['sun_profile'] == 'cone'
+assert pts['evaluation']['sun_angles'] == 'points' and pts['evaluation']['sun_profile'] == 'disc'
+assert all(0 <= l['angle'] <= math.pi for l in fit['lights']) and any(l['angle'] > 0 for l in fit['lights'])
+assert all(l['angle'] == 0 for l in pts['lights'])
+assert fit['evaluation']['shadow'] < pts['evaluation']['shadow']
+PY"
 echo "$passed passed, $failed failed"
 [[ $failed -eq 0 ]]

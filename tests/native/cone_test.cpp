@@ -17,7 +17,8 @@ Vec3 unit(double x, double y, double z) {
 
 // The cone's kernel by brute force: a midpoint grid of n x n cells equal in solid angle (cos t uniform in
 // [cos a, 1], phi uniform), each direction tested against the normal and the occluder.
-double bruteForce(const Vec3& l, double angle, const Vec3& n, const Cap* occluder, int cells) {
+double bruteForce(const Vec3& l, double angle, const Vec3& n, const Cap* occluder, int cells,
+                  SunProfile profile = SunProfile::Cone) {
   const double a = 0.5 * angle, ca = std::cos(a);
   const Vec3 up = std::abs(l.z) < 0.9 ? Vec3{0, 0, 1} : Vec3{1, 0, 0};
   Vec3 e1 = unit(up.y * l.z - up.z * l.y, up.z * l.x - up.x * l.z, up.x * l.y - up.y * l.x);
@@ -30,11 +31,13 @@ double bruteForce(const Vec3& l, double angle, const Vec3& n, const Cap* occlude
       const double phi = 2 * kPi * (j + 0.5) / cells;
       const Vec3 w = ct * l + (st * std::cos(phi)) * e1 + (st * std::sin(phi)) * e2;
       if (occluder && dot(w, occluder->axis) > cosG) continue;
-      sum += std::max(0.0, dot(n, w));
+      const double weight = profile == SunProfile::Cone ? 1.0 : 1 / (ct * ct * ct);
+      sum += std::max(0.0, dot(n, w)) * weight;
     }
   }
   const double solidAngle = 2 * kPi * (1 - ca), sa = std::sin(a);
-  return sum * solidAngle / (double(cells) * cells) / (kPi * sa * sa);
+  const double facing = profile == SunProfile::Cone ? kPi * sa * sa : 2 * kPi * (1 / ca - 1);
+  return sum * solidAngle / (double(cells) * cells) / facing;
 }
 
 TEST(Cone, IrradianceMatchesBruteForceSampling) {
@@ -68,6 +71,27 @@ TEST(Cone, AnyNormalWithoutOccluderMatchesBruteForce) {
     const double full = angle(rng);
     EXPECT_NEAR(coneIrradiance(l, full, n), bruteForce(l, full, n, nullptr, 1000), 1e-4) << "case " << k;
   }
+}
+
+TEST(Cone, Blender3sDiscMatchesBruteForce) {
+  // Cycles 3.x: uniform over a tangent disc, radiance 1 / cos^3 t; a facing surface still gets 1.
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1), angle(0.05, 2.4);
+  for (int k = 0; k < 16; ++k) {
+    const Vec3 l = unit(u(rng), u(rng), 0.6 * u(rng) + 0.3), n{0, 0, 1};
+    const double full = angle(rng);
+    const Vec3 p{2.2 * u(rng), 2.2 * u(rng), 0};
+    const Cap sphere = sphereCap(p, {0, 0, 1}, 1.0);
+    EXPECT_NEAR(coneIrradiance(l, full, n, &sphere, SunProfile::TangentDisc),
+                bruteForce(l, full, n, &sphere, 1000, SunProfile::TangentDisc), 1e-4)
+        << "case " << k;
+  }
+  EXPECT_NEAR(coneIrradiance({0, 0, 1}, 1.5, {0, 0, 1}, nullptr, SunProfile::TangentDisc), 1.0, 1e-12);
+  // The same cone gives a shadow edge of another shape: the disc weights its rim.
+  const Cap edge{unit(0.3, 0, 1), 0.3};
+  EXPECT_GT(std::abs(coneIrradiance({0, 0, 1}, 1.2, {0, 0, 1}, &edge, SunProfile::TangentDisc) -
+                     coneIrradiance({0, 0, 1}, 1.2, {0, 0, 1}, &edge)),
+            1e-3);
 }
 
 TEST(Cone, AngleZeroIsThePointLight) {

@@ -98,7 +98,7 @@ def test_bake_file_reads_band_by_band_into_a_coarse_grid(bundled_probe):
     library = pl.bake_files([bundled_probe], lights=20, resolution="256")[0]
     assert any("band by band" in n for n in banded["notes"]) and not any("band by band" in n for n in whole["notes"])
     for r in (banded, library):
-        for column in ("rgb", "direction", "rect", "solid_angle", "angular_radius"):
+        for column in ("rgb", "direction", "rect", "solid_angle", "angular_radius", "angle"):
             assert np.array_equal(r["lights"][column], whole["lights"][column]), column
         assert np.array_equal(r["total_rgb"], whole["total_rgb"])
 

@@ -204,6 +204,8 @@ def test_sun_parameters_point_the_lamp_and_keep_its_irradiance():
     assert conversion.sun_parameters(d, (2, 1, 0.5), 0.2, (4, 5, 0))["energy"] == pytest.approx(2.0)  # 4.0+: S
     assert conversion.sun_parameters(d, (2, 1, 0.5), 0.0, (5, 2, 3))["angle"] == 0.0
     assert conversion.sun_parameters(d, (2, 1, 0.5), 4.0, (5, 2, 3))["angle"] == pytest.approx(math.pi)
+    assert conversion.sun_parameters(d, (2, 1, 0.5), 4.0, (3, 4, 1))["angle"] == pytest.approx(math.radians(178))
+    assert conversion.sun_profile((3, 4, 1)) == "disc" and conversion.sun_profile((4, 5, 0)) == "cone"
     straight_up = conversion.rotation_to_direction((0, 0, 1))
     assert np.allclose(straight_up[:, 2], (0, 0, 1))
 

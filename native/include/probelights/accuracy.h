@@ -12,6 +12,12 @@
 
 namespace probelights {
 
+// A bake's lights made ready to render and be judged: the refit (colours, and directions if asked; refit.h)
+// and the sun angles (sun_angles.h); with both, the colours are solved again for the fitted angles.
+// `energyShift` (if given): the lights' total rgb after / before - 1.
+std::vector<Light> finishLights(const Evaluator& evaluator, std::vector<Light> lights, bool refit,
+                                bool moveDirections, SunAngles angles, double* energyShift = nullptr);
+
 struct AutoCountResult {
   BakeResult bake;
   EffectErrors errors;
@@ -40,8 +46,10 @@ struct AccuracyOptions {
   double maxError = 0;
   int evaluatorWidth = 2048;    // EvaluatorOptions::maxWidth (the add-on's quick estimate uses 512)
   bool moveDirections = false;  // the refit also moves directions (refit.h)
-  SunAngles sunAngles =
-      SunAngles::Fit;  // the lights' angles (sun_angles.h), fitted when shadows are evaluated
+  // The lights' angles (sun_angles.h), fitted when shadows are evaluated, and the renderer's sun they are
+  // judged and fitted as (cone.h).
+  SunAngles sunAngles = SunAngles::Fit;
+  SunProfile sunProfile = SunProfile::Cone;
 };
 
 struct EvaluatedBake {
@@ -49,8 +57,9 @@ struct EvaluatedBake {
   bool evaluated = false, autoCount = false, met = false, refit = false;
   Effects effects;
   EffectErrors errors;
-  double energyShift = 0;                   // of the refit
-  SunAngles sunAngles = SunAngles::Spread;  // what the lights' angles are: fit only when they were fitted
+  double energyShift = 0;                    // of the refit
+  SunAngles sunAngles = SunAngles::Spread;   // what the lights' angles are: fit only when they were fitted
+  SunProfile sunProfile = SunProfile::Cone;  // the sun they were judged as
   int count = 0;  // the light count asked for, or chosen when autoCount (bake.lights may hold fewer)
   std::vector<std::pair<int, double>> tried;  // autoCount: (count, worst error) of every count tried
 };

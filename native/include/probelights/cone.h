@@ -5,9 +5,20 @@
 // direction (the kernels are then the point light's, bit for bit).
 #pragma once
 
+#include <string>
+
 #include "probelights/geometry.h"
 
 namespace probelights {
+
+// How radiance spreads over a sun's cone, per renderer (measured: tests/blender/test_render.py, README):
+//   Cone: uniform (Cycles 4.0 and later: a uniform cone, normalized so a facing surface gets the strength);
+//   TangentDisc: Cycles 3.x draws a sun of angle 2a as a disc of radius tan(a) at unit distance, uniform over
+//     the disc, so radiance grows as 1 / cos^3 of the angle from the axis (a facing surface gets
+//     2 cos(a) / (1 + cos(a)) of the strength, which the add-on divides out).
+enum class SunProfile { Cone, TangentDisc };
+std::string toString(SunProfile profile);             // "cone", "disc"
+SunProfile parseSunProfile(const std::string& name);  // throws Error naming the choices
 
 // A spherical cap: the directions within `radius` (radians) of the unit `axis`.
 struct Cap {
@@ -26,11 +37,15 @@ Cap sphereCap(const Vec3& point, const Vec3& centre, double radius);
 // arcs and their cosine integral in closed form, Gauss-Legendre over the ring angle split where an arc appears
 // (a smoothstep substitution on each piece takes away the square-root ends): errors ~1e-8, at most
 // ~1e-6 (tests: brute force, closed forms).
-double coneIrradiance(const Vec3& axis, double angle, const Vec3& normal, const Cap* occluder = nullptr);
+// With SunProfile::TangentDisc the radiance is weighted by 1 / cos^3 over the cone and normalized the same way
+// (facing surface: 1); its angle is kept below 178 degrees (tan a finite).
+double coneIrradiance(const Vec3& axis, double angle, const Vec3& normal, const Cap* occluder = nullptr,
+                      SunProfile profile = SunProfile::Cone);
 
 // A normalized Phong lobe (e + 1) / (2 pi) max(0, r . w)^e integrated over the same cone (radiance
 // 1 / (pi sin^2 a)), by quadrature (Gauss-Legendre over the ring angle in two pieces, 32 points around each
 // ring; within 1e-3, tested).
-double coneGlossy(const Vec3& axis, double angle, const Vec3& reflected, int exponent);
+double coneGlossy(const Vec3& axis, double angle, const Vec3& reflected, int exponent,
+                  SunProfile profile = SunProfile::Cone);
 
 }  // namespace probelights

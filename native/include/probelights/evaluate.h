@@ -54,10 +54,21 @@ struct EffectErrors {
   double worst(Effects effects) const;
 };
 
+// A receiver the lights are fitted on (refit.h, sun_angles.h): a normal (diffuse) or a ground point under the
+// sphere (shadow), the probe's answer there, and its set's weight: 1 / the set's sum of squared luminance
+// truth, so a set's weighted squared residuals are its relative error^2.
+struct Receiver {
+  Vec3 at;
+  bool ground = false;
+  Rgb truth{};
+  double weight = 0;
+};
+
 struct EvaluatorOptions {
   int maxWidth =
       2048;  // probe samples: pixels up to this width, cells of whole pixels beyond (exact rgb sums)
-  bool forRefit = false;  // also the 1024 fit normals the irradiance refit needs
+  bool forRefit = false;                     // also the 1024 fit normals the irradiance refit needs
+  SunProfile sunProfile = SunProfile::Cone;  // how the renderer spreads a sun's light over its angle (cone.h)
 };
 
 class Evaluator {
@@ -80,16 +91,28 @@ class Evaluator {
   // not see).
   const std::vector<Vec3>& fitNormals() const { return fitNormals_; }
   const std::vector<Rgb>& fitTruth() const { return fitTruth_; }
+  // With shadows: 400 ground points the fits use, a 20 x 20 grid over the same square (none on the 16 x 16).
+  const std::vector<Vec3>& fitGroundPoints() const { return fitPoints_; }
+  const std::vector<Rgb>& fitShadowTruth() const { return fitShadow_; }
+  // The receivers a fit uses: the fit normals (or, without them, the 256 normals: their only use then is to
+  // keep an angle fit from trading shading for shadow) and, with shadows, the fit ground points.
+  std::vector<Receiver> fitReceivers() const;
+  double kernel(const Light& light, const Receiver& r) const {
+    return r.ground ? shadowKernel(light, r.at) : diffuseKernel(light, r.at);
+  }
 
-  // The lights' answers: closed form for points, over each light's cone for suns with an angle (cone.h).
-  static Rgb lightsDiffuse(const std::vector<Light>& lights, const Vec3& n);
-  static Rgb lightsShadow(const std::vector<Light>& lights, const Vec3& p);
-  static Rgb lightsGlossy(const std::vector<Light>& lights, const Vec3& r, int exponent);
+  // The lights' answers: closed form for points, over each light's cone for suns with an angle (cone.h, in
+  // the options' sun profile).
+  Rgb lightsDiffuse(const std::vector<Light>& lights, const Vec3& n) const;
+  Rgb lightsShadow(const std::vector<Light>& lights, const Vec3& p) const;
+  Rgb lightsGlossy(const std::vector<Light>& lights, const Vec3& r, int exponent) const;
   // One light's kernels: what a unit rgb gives a surface of normal n (diffuse), the ground point p under the
   // sphere (shadow), a Phong lobe around r.
-  static double diffuseKernel(const Light& light, const Vec3& n);
-  static double shadowKernel(const Light& light, const Vec3& p);
-  static double glossyKernel(const Light& light, const Vec3& r, int exponent);
+  double diffuseKernel(const Light& light, const Vec3& n) const;
+  double shadowKernel(const Light& light, const Vec3& p) const;
+  double glossyKernel(const Light& light, const Vec3& r, int exponent) const;
+  SunProfile sunProfile() const { return profile_; }
+  double maxSunAngle() const;  // the widest angle the profile draws: pi for a cone, 178 degrees for a disc
   // Visibility of direction d from ground point p past the unit sphere at (0, 0, 1).
   static bool visible(const Vec3& p, const Vec3& d);
 
@@ -100,10 +123,13 @@ class Evaluator {
   void addSample(const Rgb& rgb, const Vec3& moment);
 
   Effects effects_;
+  SunProfile profile_ = SunProfile::Cone;
   std::vector<Vec3> directions_;  // probe samples: unit directions
   std::vector<Rgb> radiance_;     // and their L dOmega
-  std::vector<Vec3> normals_, points_, fitNormals_;
-  std::vector<Rgb> diffuse_, shadow_, fitTruth_;
+  std::vector<Rgb> shadowTruthAt(const std::vector<Vec3>& points) const;
+
+  std::vector<Vec3> normals_, points_, fitNormals_, fitPoints_;
+  std::vector<Rgb> diffuse_, shadow_, fitTruth_, fitShadow_;
   std::vector<Rgb> glossy_[2];
 };
 

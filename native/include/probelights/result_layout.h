@@ -8,7 +8,7 @@
 //   lights: a table, one row per light: direction (3), rgb (3), solid_angle, angular_radius, angle, rect (4),
 //           energy_share
 //   total_rgb (3), timings_ms {load, tables, partition, lights}, notes,
-//   evaluation {effects, refit, error, diffuse | shadow | glossy, energy_shift, sun_angles,
+//   evaluation {effects, refit, error, diffuse | shadow | glossy, energy_shift, sun_angles, sun_profile,
 //               auto_count {met, lights, tried: a table of lights, worst_error}} | null
 // and of the tradeoff grid (writeTradeoff, below).
 #pragma once

@@ -28,6 +28,7 @@ struct TradeoffOptions {
   std::vector<WorkingResolution> resolutions{{WorkingResolution::Mode::Full, 0},
                                              {WorkingResolution::Mode::Width, 256}};
   bool refit = true;  // also evaluate each bake refit, colours and directions (counts up to kMaxRefitLights)
+  SunAngles sunAngles = SunAngles::Fit;  // every row's lights get these angles before they are evaluated
 };
 
 std::vector<TradeoffRow> tradeoff(const Probe& probe, const Evaluator& evaluator,
