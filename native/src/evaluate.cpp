@@ -180,8 +180,9 @@ Evaluator::Evaluator(const Probe& probe, const MomentTable* grid, Effects effect
 }
 
 // A ground point's truth is the upper hemisphere's irradiance less what the sphere hides: the samples inside
-// the sphere's cap seen from the point. The samples above the horizon are binned by (z, azimuth), so each point
-// visits only the bins the cap's bounding box touches (a few percent of the samples) and tests those exactly.
+// the sphere's cap seen from the point. The samples above the horizon are binned by (z, azimuth), so each
+// point visits only the bins the cap's bounding box touches (a few percent of the samples) and tests those
+// exactly.
 std::vector<Rgb> Evaluator::shadowTruthAt(const std::vector<Vec3>& points) const {
   constexpr int kBandsZ = 128, kBinsPhi = 256;
   auto binOf = [&](const Vec3& d) {

@@ -17,9 +17,9 @@ Vec3 rotateAbout(const Vec3& d, const Vec3& axis, double angle) {  // Rodrigues'
   return std::cos(angle) * d + std::sin(angle) * kxd + (dot(k, d) * (1 - std::cos(angle))) * k;
 }
 
-// Coordinate descent on the lights' directions against the receivers' luminance (weighted: each set's relative
-// error^2), colours fixed. The sum of the lights' answers per receiver is kept, so a trial move of one light
-// costs one pass over the receivers.
+// Coordinate descent on the lights' directions against the receivers' luminance (weighted: each set's
+// relative error^2), colours fixed. The sum of the lights' answers per receiver is kept, so a trial move of
+// one light costs one pass over the receivers.
 void moveDirections(const Evaluator& evaluator, const std::vector<Receiver>& receivers,
                     std::vector<Light>& lights) {
   const std::size_t m = receivers.size();
@@ -61,8 +61,8 @@ void moveDirections(const Evaluator& evaluator, const std::vector<Receiver>& rec
 
 std::vector<Light> refitIrradiance(const Evaluator& evaluator, const std::vector<Light>& lights,
                                    double* energyShift, bool moveDirs) {
-  // Fitted on the evaluator's fit receivers (1024 normals, and 400 ground points with shadows), not the points
-  // the error is measured on, so the error of a refit is not flattered.
+  // Fitted on the evaluator's fit receivers (1024 normals, and 400 ground points with shadows), not the
+  // points the error is measured on, so the error of a refit is not flattered.
   if (evaluator.fitNormals().empty())
     throw Error("the irradiance refit needs an evaluator made for it (diffuse, forRefit)");
   const std::vector<Receiver> receivers = evaluator.fitReceivers();

@@ -85,7 +85,8 @@ void fitSunAngles(const Evaluator& evaluator, std::vector<Light>& lights) {
         return true;
       };
       std::vector<double> coarse{0.0};
-      // Half-octave steps from start / 8 to start * 4 (no exp2 or pow: the add-on's module stays on glibc 2.28).
+      // Half-octave steps from start / 8 to start * 4 (no exp2 or pow: the add-on's module stays on glibc
+      // 2.28).
       double step = start / 8;
       for (int k = -6; k <= 4; ++k, step *= std::numbers::sqrt2) coarse.push_back(std::min(widest, step));
       tryAngles(coarse);

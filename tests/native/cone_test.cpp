@@ -113,8 +113,8 @@ TEST(Cone, ACapInFrontGivesItsCosine) {
 }
 
 TEST(Cone, TheHemisphereUnderTheSphereIsTheClosedForm) {
-  // A sun of 180 degrees straight up is the uniform upper hemisphere (radiance 1 / pi). A ground point sees it
-  // less the cap of the unit sphere resting on the plane: half-angle g = asin(1 / D), axis at angle b from
+  // A sun of 180 degrees straight up is the uniform upper hemisphere (radiance 1 / pi). A ground point sees
+  // it less the cap of the unit sphere resting on the plane: half-angle g = asin(1 / D), axis at angle b from
   // the zenith, touching the horizon, so its projected solid angle is pi sin^2(g) cos(b).
   for (double x : {0.2, 0.7, 1.5, 2.4})
     for (double y : {0.0, 0.9}) {

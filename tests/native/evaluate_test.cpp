@@ -96,7 +96,8 @@ TEST(Evaluator, SamplesFromTheWorkingGridEqualSamplesFromThePixels) {
   for (int cellSize : {4, 3, 1}) {
     const MomentTable grid(t.probe, cellSize);
     const Evaluator cells(t.probe, grid, all, options);
-    // Equal up to rounding of the set's largest value (a ground point's truth is the sky less the hidden part).
+    // Equal up to rounding of the set's largest value (a ground point's truth is the sky less the hidden
+    // part).
     auto near = [](const std::vector<Rgb>& a, const std::vector<Rgb>& b) {
       ASSERT_EQ(a.size(), b.size());
       double scale = 0;

@@ -11,8 +11,8 @@ namespace probelights {
 namespace {
 
 TEST(SunAngles, FittedAnglesCastCloserShadowsThanPointsOrSpread) {
-  // The bundled probe (a sun near the zenith) at 16 lights, measured: shadow error 2.09 % as points, 4.55 % with
-  // the spread's angles, 1.61 % fitted.
+  // The bundled probe (a sun near the zenith) at 16 lights, measured: shadow error 2.09 % as points, 4.55 %
+  // with the spread's angles, 1.61 % fitted.
   Probe probe = Probe::load(PROBELIGHTS_BUNDLED_PROBE);
   const Evaluator ev(probe, kDiffuse | kShadow, {512});
   BakeOptions o;

@@ -34,11 +34,11 @@ Cap sphereCap(const Vec3& point, const Vec3& centre, double radius);
 //   (1 / (pi sin^2 a)) * integral over the cone, outside the occluder, of max(0, normal . w) dw.
 // The occluder must lie in front of the surface (normal . w >= 0 on it), as a sphere resting on a plane does
 // for points of the plane. Exact up to one-dimensional quadrature: rings around the axis, each ring's visible
-// arcs and their cosine integral in closed form, Gauss-Legendre over the ring angle split where an arc appears
-// (a smoothstep substitution on each piece takes away the square-root ends): errors ~1e-8, at most
+// arcs and their cosine integral in closed form, Gauss-Legendre over the ring angle split where an arc
+// appears (a smoothstep substitution on each piece takes away the square-root ends): errors ~1e-8, at most
 // ~1e-6 (tests: brute force, closed forms).
-// With SunProfile::TangentDisc the radiance is weighted by 1 / cos^3 over the cone and normalized the same way
-// (facing surface: 1); its angle is kept below 178 degrees (tan a finite).
+// With SunProfile::TangentDisc the radiance is weighted by 1 / cos^3 over the cone and normalized the same
+// way (facing surface: 1); its angle is kept below 178 degrees (tan a finite).
 double coneIrradiance(const Vec3& axis, double angle, const Vec3& normal, const Cap* occluder = nullptr,
                       SunProfile profile = SunProfile::Cone);
 

@@ -1,5 +1,6 @@
 // The angle each light is drawn with (Light::angle: a Blender sun's Angle), chosen so its soft shadow matches
-// the light of its region: from the region's spread, or fitted to the probe's shadows on the evaluator's scene.
+// the light of its region: from the region's spread, or fitted to the probe's shadows on the evaluator's
+// scene.
 #pragma once
 
 #include <string>
@@ -16,11 +17,12 @@ enum class SunAngles { Fit, Spread, Points };
 std::string toString(SunAngles angles);
 SunAngles parseSunAngles(const std::string& name);  // throws Error naming the choices
 
-// Fits each light's angle to the evaluator's shadow truth (and its diffuse truth, if it has one, so no angle
-// buys shadow at the cost of shading): coordinate descent over the lights, brightest first, two rounds; each
-// light tries 0 and its spread angle times 2^(k/2), k = -6..4 (within (0, pi]), then a quarter-octave either
-// side of the best. Minimizes shadow error^2 + diffuse error^2 with colours and directions fixed. Needs an
-// evaluator with kShadow (throws Error otherwise).
+// Fits each light's angle to the evaluator's fit receivers (evaluate.h: 400 ground points under the sphere,
+// and the normals, so no angle buys shadow at the cost of shading; none of them the points the errors are
+// measured on): coordinate descent over the lights, brightest first, two rounds; each light tries 0 and its
+// spread angle times 2^(k/2), k = -6..4 (up to the profile's widest angle), then a quarter-octave either side
+// of the best. Minimizes shadow error^2 + diffuse error^2 with colours and directions fixed. Needs an evaluator
+// with kShadow (throws Error otherwise).
 void fitSunAngles(const Evaluator& evaluator, std::vector<Light>& lights);
 
 // The angles `choice` asks for: points sets 0, spread leaves them as made, fit calls fitSunAngles when the
