@@ -485,9 +485,12 @@ def test_the_bakes_nodes_are_framed_beside_the_users():
 
 def test_tolerance_never_backfires():
     """A tolerance no count meets: the count with the lowest error found, said in the report, never more lights
-    than a count that did better."""
+    than a count that did better. The probe is log-normal noise (sigma 3, 256 x 128): its shadows stay above the
+    smallest tolerance (0.05 %) up to the most lights tried, 1024 (0.16 % measured); a real probe meets it."""
     harness.empty_scene()
-    harness.env_world(bpy.data.images.load(harness.BUNDLED_PROBE))
+    rng = np.random.default_rng(1)
+    noise = np.exp(3 * rng.standard_normal((128, 256, 1))).repeat(3, 2)
+    harness.env_world(harness.float_image("noise", noise))
     settings = bpy.context.scene.probe_lights
     lamps = bake(count_mode="TOLERANCE", max_error=0.05)
     worst = max(settings.last_diffuse_error, settings.last_shadow_error)
