@@ -14,12 +14,15 @@ namespace {
 // The weighted squared residual of the lights' luminance on the receivers (each set's relative error^2).
 double fitError(const Evaluator& evaluator, const std::vector<Receiver>& receivers,
                 const std::vector<Light>& lights) {
+  std::vector<double> y(receivers.size(), 0.0), term;
+  for (const Light& l : lights) {
+    evaluator.kernels(l, receivers, luminance(l.rgb), term);
+    for (std::size_t k = 0; k < y.size(); ++k) y[k] += term[k];
+  }
   double e = 0;
-  for (const Receiver& r : receivers) {
-    double y = 0;
-    for (const Light& l : lights) y += luminance(l.rgb) * evaluator.kernel(l, r);
-    const double d = y - luminance(r.truth);
-    e += r.weight * d * d;
+  for (std::size_t k = 0; k < y.size(); ++k) {
+    const double d = y[k] - luminance(receivers[k].truth);
+    e += receivers[k].weight * d * d;
   }
   return e;
 }

@@ -85,44 +85,64 @@ double smoothPiece(double t0, double t1, F&& f) {
 std::string toString(SunProfile profile) { return std::string(nameOf(kProfiles, profile)); }
 SunProfile parseSunProfile(const std::string& name) { return parseName(kProfiles, "sun profile", name); }
 
+Cap makeCap(const Vec3& axis, double radius) { return {axis, radius, std::cos(radius), std::sin(radius)}; }
+
 Cap sphereCap(const Vec3& point, const Vec3& centre, double radius) {
   const Vec3 v = centre - point;
-  const double d = v.length();
-  return {(1.0 / d) * v, std::asin(std::min(1.0, radius / d))};
+  const double d = v.length(), s = std::min(1.0, radius / d);
+  return {(1.0 / d) * v, std::asin(s), std::sqrt(1 - s * s), s};
+}
+
+Cone makeCone(const Vec3& axis, double angle, SunProfile profile) {
+  Cone c;
+  c.axis = axis, c.profile = profile;
+  c.half = profile == SunProfile::Cone ? 0.5 * angle : std::min(0.5 * angle, kMaxDiscHalfAngle);
+  if (!(c.half > 0)) return c.half = 0, c;
+  const Frame f = frameAround(axis);
+  c.e1 = f.e1, c.e2 = f.e2;
+  c.cosHalf = std::cos(c.half), c.sinHalf = std::sin(c.half);
+  c.facing = facingIrradiance(profile, c.half);
+  return c;
 }
 
 double coneIrradiance(const Vec3& axis, double angle, const Vec3& normal, const Cap* occluder,
                       SunProfile profile) {
-  const double a = profile == SunProfile::Cone ? 0.5 * angle : std::min(0.5 * angle, kMaxDiscHalfAngle);
+  return coneIrradiance(makeCone(axis, angle, profile), normal, occluder);
+}
+
+double coneIrradiance(const Cone& cone, const Vec3& normal, const Cap* occluder) {
+  const Vec3& axis = cone.axis;
+  const double a = cone.half;
   const double nl = dot(normal, axis);
   if (!(a > 0)) {
     if (nl <= 0) return 0;
-    if (occluder && dot(axis, occluder->axis) > std::cos(occluder->radius)) return 0;
+    if (occluder && dot(axis, occluder->axis) > occluder->cosRadius) return 0;
     return nl;
   }
-  if (!occluder) {  // the whole cone in front (pi sin^2 a (n . axis), normalized) or behind
-    const double thetaN = std::acos(std::clamp(nl, -1.0, 1.0));
-    if (thetaN + a <= 0.5 * kPi) return nl;
-    if (thetaN - a >= 0.5 * kPi) return 0;
-  }
-  const Frame f = frameAround(axis);
-  const double n1 = dot(normal, f.e1), n2 = dot(normal, f.e2), bn = std::sqrt(n1 * n1 + n2 * n2);
-  const double thetaN = angleBetween(nl, bn);  // the normal's angle from the axis
-  // The occluder matters when it overlaps the cone.
-  double cl = 0, c1 = 0, c2 = 0, bc = 0, beta = 0, g = 0, cosG = 1, cosDelta = 0;
+  // Whether the occluder overlaps the cone: the angle between their axes below a + g, i.e. its cosine above
+  // cos(a + g) (always when a + g >= pi).
+  double cl = 0;
   bool occluded = false;
   if (occluder) {
-    cl = dot(occluder->axis, axis), c1 = dot(occluder->axis, f.e1), c2 = dot(occluder->axis, f.e2);
+    cl = dot(occluder->axis, axis);
+    occluded = a + occluder->radius >= kPi ||
+               cl > cone.cosHalf * occluder->cosRadius - cone.sinHalf * occluder->sinRadius;
+  }
+  if (!occluded) {  // the whole cone in front (pi sin^2 a (n . axis), normalized: n . axis) or behind
+    const double sinN = std::sqrt(std::max(0.0, 1 - nl * nl));
+    if (nl * cone.cosHalf - sinN * cone.sinHalf >= 0) return nl;  // cos(thetaN + a) >= 0
+    if (nl * cone.cosHalf + sinN * cone.sinHalf <= 0) return 0;   // cos(thetaN - a) <= 0
+  }
+  const double n1 = dot(normal, cone.e1), n2 = dot(normal, cone.e2), bn = std::sqrt(n1 * n1 + n2 * n2);
+  double c1 = 0, c2 = 0, bc = 0, beta = 0, g = 0, cosG = 1, cosDelta = 0;
+  if (occluded) {
+    c1 = dot(occluder->axis, cone.e1), c2 = dot(occluder->axis, cone.e2);
     bc = std::sqrt(c1 * c1 + c2 * c2);
     beta = angleBetween(cl, bc);
-    g = occluder->radius, cosG = std::cos(g);
-    occluded = beta < a + g;
+    g = occluder->radius, cosG = occluder->cosRadius;
     cosDelta = bc > 0 && bn > 0 ? (c1 * n1 + c2 * n2) / (bc * bn) : 0.0;
   }
-  if (!occluded) {
-    if (thetaN + a <= 0.5 * kPi) return nl;  // the whole cone in front: pi sin^2 a (n . axis)
-    if (thetaN - a >= 0.5 * kPi) return 0;
-  }
+  const SunProfile profile = cone.profile;
   // One ring at angle t from the axis: w = cos t axis + sin t (cos phi e1 + sin phi e2), and
   // n . w = A + B cos(phi - phiN). Its integral over the ring's lit arc, less the occluded arc.
   auto ring = [&](double t) {
@@ -161,7 +181,7 @@ double coneIrradiance(const Vec3& axis, double angle, const Vec3& normal, const 
   double sum = 0;
   for (int i = 0; i + 1 < count; ++i)
     if (cuts[i + 1] > cuts[i]) sum += smoothPiece(cuts[i], cuts[i + 1], ring);
-  return sum / facingIrradiance(profile, a);
+  return sum / cone.facing;
 }
 
 double coneGlossy(const Vec3& axis, double angle, const Vec3& reflected, int exponent, SunProfile profile) {

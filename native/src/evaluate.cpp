@@ -166,6 +166,7 @@ Evaluator::Evaluator(const Probe& probe, const MomentTable* grid, Effects effect
     for (int i = 0; i < 16; ++i)
       for (int j = 0; j < 16; ++j)
         points_.push_back({-2.5 + 5.0 * (i + 0.5) / 16, -2.5 + 5.0 * (j + 0.5) / 16, 0.0});
+    for (const Vec3& p : points_) pointCaps_.push_back(sphereCap(p, {0, 0, 1}, 1.0));
     shadow_ = shadowTruthAt(points_);
     for (int i = 0; i < 20; ++i)
       for (int j = 0; j < 20; ++j)
@@ -243,7 +244,8 @@ std::vector<Receiver> Evaluator::fitReceivers() const {
     double sum = 0;
     for (const Rgb& t : truth) sum += luminance(t) * luminance(t);
     if (!(sum > 0)) return;
-    for (std::size_t k = 0; k < at.size(); ++k) out.push_back({at[k], ground, truth[k], 1 / sum});
+    for (std::size_t k = 0; k < at.size(); ++k)
+      out.push_back({at[k], ground, truth[k], 1 / sum, ground ? sphereCap(at[k], {0, 0, 1}, 1.0) : Cap{}});
   };
   if (!fitNormals_.empty())
     add(fitNormals_, fitTruth_, false);
@@ -266,6 +268,26 @@ double Evaluator::shadowKernel(const Light& l, const Vec3& p) const {
     return coneIrradiance(l.direction, l.angle, {0, 0, 1}, &sphere, profile_);
   }
   return l.direction.z > 0 && visible(p, l.direction) ? l.direction.z : 0.0;
+}
+
+double Evaluator::kernel(const Light& l, const Receiver& r) const {
+  if (!(l.angle > 0)) return r.ground ? shadowKernel(l, r.at) : diffuseKernel(l, r.at);
+  return coneIrradiance(makeCone(l.direction, l.angle, profile_), r.ground ? Vec3{0, 0, 1} : r.at,
+                        r.ground ? &r.sphere : nullptr);
+}
+
+void Evaluator::kernels(const Light& l, const std::vector<Receiver>& receivers, double scale,
+                        std::vector<double>& out) const {
+  out.resize(receivers.size());
+  if (!(l.angle > 0)) {
+    for (std::size_t k = 0; k < receivers.size(); ++k) out[k] = scale * kernel(l, receivers[k]);
+    return;
+  }
+  const Cone cone = makeCone(l.direction, l.angle, profile_);
+  for (std::size_t k = 0; k < receivers.size(); ++k) {
+    const Receiver& r = receivers[k];
+    out[k] = scale * (r.ground ? coneIrradiance(cone, {0, 0, 1}, &r.sphere) : coneIrradiance(cone, r.at));
+  }
 }
 
 double Evaluator::glossyKernel(const Light& l, const Vec3& r, int exponent) const {
@@ -308,8 +330,20 @@ EffectErrors Evaluator::evaluate(const std::vector<Light>& lights) const {
   if (effects_ & kDiffuse)
     e.diffuse =
         relativeRms(answer(normals_, [&](const Vec3& n) { return lightsDiffuse(lights, n); }), diffuse_);
-  if (effects_ & kShadow)
-    e.shadow = relativeRms(answer(points_, [&](const Vec3& p) { return lightsShadow(lights, p); }), shadow_);
+  if (effects_ & kShadow) {
+    // Each light's cone prepared once, each point's cap once.
+    std::vector<Rgb> got(points_.size(), Rgb{});
+    for (const Light& l : lights) {
+      const bool cone = l.angle > 0;
+      const Cone c = cone ? makeCone(l.direction, l.angle, profile_) : Cone{};
+      for (std::size_t i = 0; i < points_.size(); ++i) {
+        const double w = cone ? coneIrradiance(c, {0, 0, 1}, &pointCaps_[i]) : shadowKernel(l, points_[i]);
+        if (w > 0)
+          for (int k = 0; k < 3; ++k) got[i][k] += l.rgb[k] * w;
+      }
+    }
+    e.shadow = relativeRms(got, shadow_);
+  }
   if (effects_ & kGlossy) {
     // The two lobes' errors combined as one RMS over both sets of points.
     double d = 0, t = 0;

@@ -26,8 +26,7 @@ void moveDirections(const Evaluator& evaluator, const std::vector<Receiver>& rec
   std::vector<double> target(m), sum(m, 0.0), term(m), trial(m);
   for (std::size_t i = 0; i < m; ++i) target[i] = luminance(receivers[i].truth);
   auto contribution = [&](const Light& l, std::vector<double>& out) {
-    const double y = luminance(l.rgb);
-    for (std::size_t i = 0; i < m; ++i) out[i] = y * evaluator.kernel(l, receivers[i]);
+    evaluator.kernels(l, receivers, luminance(l.rgb), out);
   };
   for (const Light& l : lights) {
     contribution(l, term);
@@ -75,9 +74,10 @@ std::vector<Light> refitIrradiance(const Evaluator& evaluator, const std::vector
   // Weighted least squares: each row scaled by the square root of its set's weight.
   auto solveColours = [&](std::vector<Light>& ls) {
     std::vector<double> A(static_cast<std::size_t>(m) * n);
-    parallelFor(m, [&](std::int64_t i) {
-      const double w = std::sqrt(receivers[i].weight);
-      for (int j = 0; j < n; ++j) A[i * n + j] = w * evaluator.kernel(ls[j], receivers[i]);
+    parallelFor(n, [&](std::int64_t j) {  // a light's column at once (its cone prepared once)
+      std::vector<double> column;
+      evaluator.kernels(ls[j], receivers, 1.0, column);
+      for (int i = 0; i < m; ++i) A[i * n + j] = std::sqrt(receivers[i].weight) * column[i];
     });
     for (int c = 0; c < 3; ++c) {
       std::vector<double> b(m);

@@ -15,6 +15,7 @@ namespace {
 constexpr NameTable<SunAngles, 3> kSunAngles{
     {{SunAngles::Fit, "fit"}, {SunAngles::Spread, "spread"}, {SunAngles::Points, "points"}}};
 
+constexpr std::size_t kMaxFitted = 64;
 constexpr double kSmallest =
     0.5 * kPi / 180;  // the spread of a one-pixel region is ~0: start from half a degree
 }  // namespace
@@ -31,10 +32,7 @@ void fitSunAngles(const Evaluator& evaluator, std::vector<Light>& lights) {
   if (m == 0 || lights.empty()) return;
 
   auto contribution = [&](const Light& l, std::vector<double>& out) {
-    const double y = luminance(l.rgb);
-    for (std::size_t k = 0; k < m; ++k) {
-      out[k] = y * evaluator.kernel(l, receivers[k]);
-    }
+    evaluator.kernels(l, receivers, luminance(l.rgb), out);
   };
   std::vector<std::vector<double>> terms(lights.size(), std::vector<double>(m));
   parallelFor(static_cast<std::int64_t>(lights.size()),
@@ -58,6 +56,9 @@ void fitSunAngles(const Evaluator& evaluator, std::vector<Light>& lights) {
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     return luminance(lights[a].rgb) > luminance(lights[b].rgb);
   });
+  // The brightest kMaxFitted lights are fitted; past them each light is a small part of the light and keeps
+  // its spread's angle (a 1024-light fit would cost seconds for nothing visible).
+  if (order.size() > kMaxFitted) order.resize(kMaxFitted);
   for (int round = 0; round < 2; ++round)
     for (std::size_t i : order) {
       Light& light = lights[i];

@@ -88,7 +88,7 @@ TEST(Cone, Blender3sDiscMatchesBruteForce) {
   }
   EXPECT_NEAR(coneIrradiance({0, 0, 1}, 1.5, {0, 0, 1}, nullptr, SunProfile::TangentDisc), 1.0, 1e-12);
   // The same cone gives a shadow edge of another shape: the disc weights its rim.
-  const Cap edge{unit(0.3, 0, 1), 0.3};
+  const Cap edge = makeCap(unit(0.3, 0, 1), 0.3);
   EXPECT_GT(std::abs(coneIrradiance({0, 0, 1}, 1.2, {0, 0, 1}, &edge, SunProfile::TangentDisc) -
                      coneIrradiance({0, 0, 1}, 1.2, {0, 0, 1}, &edge)),
             1e-3);
@@ -98,7 +98,7 @@ TEST(Cone, AngleZeroIsThePointLight) {
   const Vec3 l = unit(0.3, -0.2, 0.9), n = unit(0.1, 0.2, 1.0);
   EXPECT_EQ(coneIrradiance(l, 0.0, n), dot(n, l));
   EXPECT_EQ(coneIrradiance(l, 0.0, unit(0, 0, -1)), 0.0);
-  const Cap hiding{l, 0.1}, beside{unit(-0.3, 0.2, 0.9), 0.1};
+  const Cap hiding = makeCap(l, 0.1), beside = makeCap(unit(-0.3, 0.2, 0.9), 0.1);
   EXPECT_EQ(coneIrradiance(l, 0.0, n, &hiding), 0.0);
   EXPECT_EQ(coneIrradiance(l, 0.0, n, &beside), dot(n, l));
   // And a small cone is close to it.

@@ -20,14 +20,26 @@ enum class SunProfile { Cone, TangentDisc };
 std::string toString(SunProfile profile);             // "cone", "disc"
 SunProfile parseSunProfile(const std::string& name);  // throws Error naming the choices
 
-// A spherical cap: the directions within `radius` (radians) of the unit `axis`.
+// A spherical cap: the directions within `radius` (radians) of the unit `axis`, with the radius' cosine and
+// sine (makeCap fills them).
 struct Cap {
   Vec3 axis;
-  double radius = 0;
+  double radius = 0, cosRadius = 1, sinRadius = 0;
 };
+Cap makeCap(const Vec3& axis, double radius);
 
 // The cap a sphere of `radius` centred at `centre` covers seen from `point` (outside it).
 Cap sphereCap(const Vec3& point, const Vec3& centre, double radius);
+
+// A light's cone, prepared once for many receivers: its axis and a frame around it, the half-angle (clamped
+// for the disc profile) with its cosine and sine, and the profile's facing irradiance.
+struct Cone {
+  Vec3 axis, e1, e2;
+  double half = 0, cosHalf = 1, sinHalf = 0, facing = 0;
+  SunProfile profile = SunProfile::Cone;
+};
+Cone makeCone(const Vec3& axis, double angle, SunProfile profile = SunProfile::Cone);
+double coneIrradiance(const Cone& cone, const Vec3& normal, const Cap* occluder = nullptr);
 
 // Irradiance on a surface of unit normal `normal` from a unit-strength cone of full angle `angle` (radians,
 // [0, pi]) along the unit `axis`, the directions inside `occluder` (if given) hidden:

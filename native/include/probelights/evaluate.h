@@ -62,6 +62,7 @@ struct Receiver {
   bool ground = false;
   Rgb truth{};
   double weight = 0;
+  Cap sphere;  // ground points: the cap the sphere hides
 };
 
 struct EvaluatorOptions {
@@ -97,9 +98,10 @@ class Evaluator {
   // The receivers a fit uses: the fit normals (or, without them, the 256 normals: their only use then is to
   // keep an angle fit from trading shading for shadow) and, with shadows, the fit ground points.
   std::vector<Receiver> fitReceivers() const;
-  double kernel(const Light& light, const Receiver& r) const {
-    return r.ground ? shadowKernel(light, r.at) : diffuseKernel(light, r.at);
-  }
+  double kernel(const Light& light, const Receiver& r) const;
+  // The light's kernel at every receiver, times `scale` (its cone prepared once).
+  void kernels(const Light& light, const std::vector<Receiver>& receivers, double scale,
+               std::vector<double>& out) const;
 
   // The lights' answers: closed form for points, over each light's cone for suns with an angle (cone.h, in
   // the options' sun profile).
@@ -129,6 +131,7 @@ class Evaluator {
   std::vector<Rgb> shadowTruthAt(const std::vector<Vec3>& points) const;
 
   std::vector<Vec3> normals_, points_, fitNormals_, fitPoints_;
+  std::vector<Cap> pointCaps_;  // the sphere's cap from each ground point
   std::vector<Rgb> diffuse_, shadow_, fitTruth_, fitShadow_;
   std::vector<Rgb> glossy_[2];
 };

@@ -19,10 +19,10 @@ SunAngles parseSunAngles(const std::string& name);  // throws Error naming the c
 
 // Fits each light's angle to the evaluator's fit receivers (evaluate.h: 400 ground points under the sphere,
 // and the normals, so no angle buys shadow at the cost of shading; none of them the points the errors are
-// measured on): coordinate descent over the lights, brightest first, two rounds; each light tries 0 and its
-// spread angle times 2^(k/2), k = -6..4 (up to the profile's widest angle), then a quarter-octave either side
-// of the best. Minimizes shadow error^2 + diffuse error^2 with colours and directions fixed. Needs an
-// evaluator with kShadow (throws Error otherwise).
+// measured on): coordinate descent over the 64 brightest lights (the others keep their spread's angle),
+// brightest first, two rounds; each light tries 0 and its spread angle times 2^(k/2), k = -6..4 (up to the
+// profile's widest angle), then a quarter-octave either side of the best. Minimizes shadow error^2 + diffuse
+// error^2 with colours and directions fixed. Needs an evaluator with kShadow (throws Error otherwise).
 void fitSunAngles(const Evaluator& evaluator, std::vector<Light>& lights);
 
 // The angles `choice` asks for: points sets 0, spread leaves them as made, fit calls fitSunAngles when the
