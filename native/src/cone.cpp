@@ -132,6 +132,15 @@ double coneIrradiance(const Cone& cone, const Vec3& normal, const Cap* occluder)
     const double sinN = std::sqrt(std::max(0.0, 1 - nl * nl));
     if (nl * cone.cosHalf - sinN * cone.sinHalf >= 0) return nl;  // cos(thetaN + a) >= 0
     if (nl * cone.cosHalf + sinN * cone.sinHalf <= 0) return 0;   // cos(thetaN - a) <= 0
+    if (cone.profile == SunProfile::Cone && sinN > 0) {
+      // A uniform cap cut by the horizon, in closed form (Snyder 1996, as in Lagarde & de Rousiers 2014,
+      // "Moving Frostbite to PBR", sphere lights): x = cot a, y = -x cot thetaN,
+      // z = sin thetaN sqrt(1 - y^2), E = (cos thetaN acos(y) - x z) sin^2 a + atan(z / x), over
+      // pi sin^2 a. Tested against the quadrature.
+      const double s2 = cone.sinHalf * cone.sinHalf, x = cone.cosHalf / cone.sinHalf;
+      const double y = std::clamp(-x * nl / sinN, -1.0, 1.0), z = sinN * std::sqrt(1 - y * y);
+      return ((nl * std::acos(y) - x * z) * s2 + std::atan2(z, x)) / (kPi * s2);
+    }
   }
   const double n1 = dot(normal, cone.e1), n2 = dot(normal, cone.e2), bn = std::sqrt(n1 * n1 + n2 * n2);
   double c1 = 0, c2 = 0, bc = 0, beta = 0, g = 0, cosG = 1, cosDelta = 0;
@@ -151,18 +160,20 @@ double coneIrradiance(const Cone& cone, const Vec3& normal, const Cap* occluder)
     double lit;
     if (B <= std::abs(A)) {
       lit = A > 0 ? 2 * kPi * A : 0.0;
-    } else {
-      const double psi = std::acos(std::clamp(-A / B, -1.0, 1.0));
-      lit = 2 * A * psi + 2 * B * std::sin(psi);
+    } else {  // sin(acos(c)) = sqrt(1 - c^2)
+      const double c = std::clamp(-A / B, -1.0, 1.0);
+      lit = 2 * A * std::acos(c) + 2 * B * std::sqrt(1 - c * c);
     }
     if (occluded) {
       const double Ac = cl * ct, Bc = bc * st;
-      double psi;
-      if (Bc <= 1e-300)
-        psi = Ac >= cosG ? kPi : 0.0;
-      else
-        psi = std::acos(std::clamp((cosG - Ac) / Bc, -1.0, 1.0));
-      lit -= 2 * A * psi + 2 * B * cosDelta * std::sin(psi);
+      double psi, sinPsi;
+      if (Bc <= 1e-300) {
+        psi = Ac >= cosG ? kPi : 0.0, sinPsi = 0;
+      } else {
+        const double c = std::clamp((cosG - Ac) / Bc, -1.0, 1.0);
+        psi = std::acos(c), sinPsi = std::sqrt(1 - c * c);
+      }
+      lit -= 2 * A * psi + 2 * B * cosDelta * sinPsi;
     }
     return std::max(0.0, lit) * st * profileWeight(profile, ct);
   };

@@ -7,27 +7,12 @@
 
 namespace probelights {
 
-std::vector<double> nonNegativeLeastSquares(const std::vector<double>& A, int m, int n,
-                                            const std::vector<double>& b) {
-  // Lawson & Hanson (1974), chapter 23: an active-set method; P is the set of free (positive) variables. It
-  // works on the normal equations G = A^T A, c = A^T b, built once: a step costs O(n^2) and a solve on P
-  // O(|P|^3).
-  std::vector<double> G(static_cast<std::size_t>(n) * n, 0.0), c(n, 0.0);
-  for (int i = 0; i < m; ++i)
-    for (int j = 0; j < n; ++j) {
-      const double aij = A[static_cast<std::size_t>(i) * n + j];
-      if (aij == 0) continue;
-      c[j] += aij * b[i];
-      for (int k = 0; k <= j; ++k)
-        G[static_cast<std::size_t>(j) * n + k] += aij * A[static_cast<std::size_t>(i) * n + k];
-    }
-  double trace = 0;
-  for (int j = 0; j < n; ++j) {
-    for (int k = 0; k < j; ++k)
-      G[static_cast<std::size_t>(k) * n + j] = G[static_cast<std::size_t>(j) * n + k];
-    trace += G[static_cast<std::size_t>(j) * n + j];
-  }
-  const double ridge = 1e-12 * trace / std::max(1, n);  // keeps rank-deficient sub-problems solvable
+namespace {
+
+// Lawson & Hanson (1974), chapter 23: an active-set method; P is the set of free (positive) variables. It
+// works on the normal equations G = A^T A, c = A^T b: a step costs O(n^2) and a solve on P O(|P|^3).
+std::vector<double> solveNormal(const std::vector<double>& G, const std::vector<double>& c, int n,
+                                double ridge) {
   std::vector<double> x(n, 0.0), w(n), z;
   std::vector<bool> inP(n, false);
   auto gradient = [&]() {  // w = A^T (b - A x) = c - G x
@@ -66,15 +51,35 @@ std::vector<double> nonNegativeLeastSquares(const std::vector<double>& A, int m,
   double cmax = 0;
   for (double v : c) cmax = std::max(cmax, std::abs(v));
   const double tol = 1e-12 * std::max(cmax, 1e-300);
+  // Warm start: solve on every variable, drop those that come out non-positive, solve again, until the
+  // solution on P is positive (P only shrinks: a few rounds). That is a feasible point of the method (x_P the
+  // least squares on P, the rest 0), so the loop below only adds what the gradient still asks for, instead of
+  // adding the n variables one by one from x = 0 with a factorization each (O(n^4)).
+  std::fill(inP.begin(), inP.end(), true);
+  for (bool shrunk = true; shrunk;) {
+    solveP();
+    shrunk = false;
+    for (int j = 0; j < n; ++j)
+      if (inP[j] && !(z[j] > 0)) inP[j] = false, shrunk = true;
+  }
+  x = z;
+  // A variable whose own solve gives it no positive value (rounding: in exact arithmetic it cannot happen) is
+  // not offered again until another one has entered, so the method cannot cycle on it.
+  std::vector<bool> refused(n, false);
   for (int outer = 0; outer < 3 * n + 10; ++outer) {
     gradient();
     int best = -1;
     for (int j = 0; j < n; ++j)
-      if (!inP[j] && w[j] > tol && (best < 0 || w[j] > w[best])) best = j;
+      if (!inP[j] && !refused[j] && w[j] > tol && (best < 0 || w[j] > w[best])) best = j;
     if (best < 0) break;
     inP[best] = true;
     for (int inner = 0; inner < 3 * n + 10; ++inner) {
       solveP();
+      if (inner == 0 && !(z[best] > 0)) {
+        inP[best] = false, refused[best] = true;
+        break;
+      }
+      if (inner == 0) std::fill(refused.begin(), refused.end(), false);
       bool feasible = true;
       for (int j = 0; j < n; ++j)
         if (inP[j] && z[j] <= 0) feasible = false;
@@ -92,6 +97,41 @@ std::vector<double> nonNegativeLeastSquares(const std::vector<double>& A, int m,
     }
   }
   return x;
+}
+
+}  // namespace
+
+std::vector<std::vector<double>> nonNegativeLeastSquares(const std::vector<double>& A, int m, int n,
+                                                         const std::vector<std::vector<double>>& bs) {
+  // G = A^T A once for every right-hand side (the costly part for tall A: m n^2 / 2).
+  std::vector<double> G(static_cast<std::size_t>(n) * n, 0.0);
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < n; ++j) {
+      const double aij = A[static_cast<std::size_t>(i) * n + j];
+      if (aij == 0) continue;
+      for (int k = 0; k <= j; ++k)
+        G[static_cast<std::size_t>(j) * n + k] += aij * A[static_cast<std::size_t>(i) * n + k];
+    }
+  double trace = 0;
+  for (int j = 0; j < n; ++j) {
+    for (int k = 0; k < j; ++k)
+      G[static_cast<std::size_t>(k) * n + j] = G[static_cast<std::size_t>(j) * n + k];
+    trace += G[static_cast<std::size_t>(j) * n + j];
+  }
+  const double ridge = 1e-12 * trace / std::max(1, n);  // keeps rank-deficient sub-problems solvable
+  std::vector<std::vector<double>> out;
+  for (const std::vector<double>& b : bs) {
+    std::vector<double> c(n, 0.0);
+    for (int i = 0; i < m; ++i)
+      for (int j = 0; j < n; ++j) c[j] += A[static_cast<std::size_t>(i) * n + j] * b[i];
+    out.push_back(solveNormal(G, c, n, ridge));
+  }
+  return out;
+}
+
+std::vector<double> nonNegativeLeastSquares(const std::vector<double>& A, int m, int n,
+                                            const std::vector<double>& b) {
+  return nonNegativeLeastSquares(A, m, n, std::vector<std::vector<double>>{b}).front();
 }
 
 }  // namespace probelights

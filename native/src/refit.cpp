@@ -11,6 +11,8 @@ namespace probelights {
 
 namespace {
 
+constexpr std::size_t kMaxMoved = 64;
+
 Vec3 rotateAbout(const Vec3& d, const Vec3& axis, double angle) {  // Rodrigues' rotation
   const Vec3 k = (1.0 / axis.length()) * axis;
   const Vec3 kxd{k.y * d.z - k.z * d.y, k.z * d.x - k.x * d.z, k.x * d.y - k.y * d.x};
@@ -23,7 +25,7 @@ Vec3 rotateAbout(const Vec3& d, const Vec3& axis, double angle) {  // Rodrigues'
 void moveDirections(const Evaluator& evaluator, const std::vector<Receiver>& receivers,
                     std::vector<Light>& lights) {
   const std::size_t m = receivers.size();
-  std::vector<double> target(m), sum(m, 0.0), term(m), trial(m);
+  std::vector<double> target(m), sum(m, 0.0), term(m), trial(m), candidate(m);
   for (std::size_t i = 0; i < m; ++i) target[i] = luminance(receivers[i].truth);
   auto contribution = [&](const Light& l, std::vector<double>& out) {
     evaluator.kernels(l, receivers, luminance(l.rgb), out);
@@ -37,21 +39,30 @@ void moveDirections(const Evaluator& evaluator, const std::vector<Receiver>& rec
     for (std::size_t i = 0; i < m; ++i) e += receivers[i].weight * (s[i] - target[i]) * (s[i] - target[i]);
     return e;
   };
+  // The brightest kMaxMoved lights move; past them a light is a small part of the light and a move buys
+  // little for its cost (every trial is a pass over the receivers).
+  std::vector<std::size_t> order(lights.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return luminance(lights[a].rgb) > luminance(lights[b].rgb);
+  });
+  if (order.size() > kMaxMoved) order.resize(kMaxMoved);
   double current = error(sum);
   for (double step : {4.0, 2.0, 1.0, 0.5})
-    for (Light& l : lights) {
+    for (std::size_t index : order) {
+      Light& l = lights[index];
       const Vec3 d = l.direction;
       const Vec3 t1 = std::abs(d.z) < 0.9 ? Vec3{-d.y, d.x, 0} : Vec3{0, -d.z, d.y};
       const Vec3 t2{d.y * t1.z - d.z * t1.y, d.z * t1.x - d.x * t1.z, d.x * t1.y - d.y * t1.x};
+      contribution(l, term);
       for (const Vec3& axis : {t1, t2})
         for (double sign : {1.0, -1.0}) {
-          contribution(l, term);
           Light moved = l;
           moved.direction = rotateAbout(l.direction, axis, sign * step * kPi / 180);
-          contribution(moved, trial);
-          for (std::size_t i = 0; i < m; ++i) trial[i] = sum[i] - term[i] + trial[i];
+          contribution(moved, candidate);
+          for (std::size_t i = 0; i < m; ++i) trial[i] = sum[i] - term[i] + candidate[i];
           const double e = error(trial);
-          if (e < current) current = e, sum.swap(trial), l.direction = moved.direction;
+          if (e < current) current = e, sum.swap(trial), term.swap(candidate), l.direction = moved.direction;
         }
     }
 }
@@ -79,12 +90,12 @@ std::vector<Light> refitIrradiance(const Evaluator& evaluator, const std::vector
       evaluator.kernels(ls[j], receivers, 1.0, column);
       for (int i = 0; i < m; ++i) A[i * n + j] = std::sqrt(receivers[i].weight) * column[i];
     });
-    for (int c = 0; c < 3; ++c) {
-      std::vector<double> b(m);
-      for (int i = 0; i < m; ++i) b[i] = std::sqrt(receivers[i].weight) * receivers[i].truth[c];
-      std::vector<double> x = nonNegativeLeastSquares(A, m, n, b);
-      for (int j = 0; j < n; ++j) ls[j].rgb[c] = x[j];
-    }
+    std::vector<std::vector<double>> b(3, std::vector<double>(m));
+    for (int c = 0; c < 3; ++c)
+      for (int i = 0; i < m; ++i) b[c][i] = std::sqrt(receivers[i].weight) * receivers[i].truth[c];
+    const std::vector<std::vector<double>> x = nonNegativeLeastSquares(A, m, n, b);
+    for (int c = 0; c < 3; ++c)
+      for (int j = 0; j < n; ++j) ls[j].rgb[c] = x[c][j];
   };
   solveColours(out);
   for (int round = 0; moveDirs && round < 3; ++round) {

@@ -73,6 +73,23 @@ TEST(Cone, AnyNormalWithoutOccluderMatchesBruteForce) {
   }
 }
 
+TEST(Cone, TheHorizonClosedFormEqualsTheQuadrature) {
+  // An unoccluded uniform cone cut by the horizon takes the closed form; an occluder of negligible radius in
+  // the cone sends the same case through the ring quadrature.
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1), angle(0.01, 3.1);
+  int cut = 0;
+  for (int k = 0; k < 200; ++k) {
+    const Vec3 n = unit(u(rng), u(rng), u(rng)), l = unit(u(rng), u(rng), u(rng));
+    const double full = angle(rng);
+    const Cap speck = makeCap(l, 1e-12);
+    const double closed = coneIrradiance(l, full, n), quadrature = coneIrradiance(l, full, n, &speck);
+    EXPECT_NEAR(closed, quadrature, 1e-6) << "case " << k;
+    if (closed > 1e-9 && std::abs(closed - dot(n, l)) > 1e-9) ++cut;
+  }
+  EXPECT_GE(cut, 40);  // the cases cross the horizon
+}
+
 TEST(Cone, Blender3sDiscMatchesBruteForce) {
   // Cycles 3.x: uniform over a tangent disc, radiance 1 / cos^3 t; a facing surface still gets 1.
   std::mt19937 rng(5);

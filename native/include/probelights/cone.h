@@ -48,7 +48,8 @@ double coneIrradiance(const Cone& cone, const Vec3& normal, const Cap* occluder 
 // for points of the plane. Exact up to one-dimensional quadrature: rings around the axis, each ring's visible
 // arcs and their cosine integral in closed form, Gauss-Legendre over the ring angle split where an arc
 // appears (a smoothstep substitution on each piece takes away the square-root ends): errors ~1e-8, at most
-// ~1e-6 (tests: brute force, closed forms).
+// ~1e-6 (tests: brute force, closed forms). Without an occluder a uniform cone is closed-form: n . axis when
+// it lies wholly above the horizon, 0 below, and Snyder's formula for a cap cut by the horizon.
 // With SunProfile::TangentDisc the radiance is weighted by 1 / cos^3 over the cone and normalized the same
 // way (facing surface: 1); its angle is kept below 178 degrees (tan a finite).
 double coneIrradiance(const Vec3& axis, double angle, const Vec3& normal, const Cap* occluder = nullptr,
