@@ -49,8 +49,9 @@ def bake_settings():
         "refit": BoolProperty(name="Refit", default=False,
                               description="Place each light at its region's brightest light and refit the lights' "
                                           "colours and directions so their diffuse light and shadows match the "
-                                          "world's (at 16 suns about a third of the diffuse error and two thirds of "
-                                          "the shadow error; slower: about 1 s at 4K)"),
+                                          "world's (measured on 15 probes in Cycles 4.5: at 16 suns the rendered "
+                                          "shadow difference falls from 0.9-3.8 % to 0.3-2.4 %; adds about 0.3-0.5 s "
+                                          "at 4K)"),
     }
 
 
