@@ -1,5 +1,5 @@
-// The lights' side of the evaluator: each light's kernels as the renderer draws it (cone.h), the lights' answers
-// on the evaluator's points, and their errors against the probe's truths (evaluate.cpp builds those).
+// The lights' side of the evaluator: each light's kernels as the renderer draws it (cone.h), the lights'
+// answers on the evaluator's points, and their errors against the probe's truths (evaluate.cpp builds those).
 #include <algorithm>
 #include <cmath>
 

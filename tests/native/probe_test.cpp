@@ -86,6 +86,29 @@ TEST(Probe, RealProbesNegativeSamplesOfLossyExrAreClampedAndCounted) {
       for (double c : probe.radiance(x, y)) ASSERT_GE(c, 0.0);
 }
 
+TEST(Probe, NegativeSamplesSayTheLightTheyHold) {
+  // 8 x 4 lat-long, grey 1 everywhere but one pixel of a top row (solid angle s0) at -v: the clamp takes away
+  // v s0 of luminance-light, against the positive 4 pi - s0 (rows' solid angles sum to 4 pi).
+  std::vector<float> pixels(8 * 4, 1.0f);
+  const Probe plain(ImageView{pixels.data(), 8, 4, 1}, ProjectionKind::LatLong);
+  const double s0 = plain.projection().pixelSolidAngle(3, 0);
+  pixels[3] = -2.0f;
+  const Probe probe(ImageView{pixels.data(), 8, 4, 1}, ProjectionKind::LatLong);
+  EXPECT_EQ(probe.report().negativeSamples, 1);
+  EXPECT_NEAR(probe.report().negativeLight, -2 * s0, 1e-12);
+  EXPECT_NEAR(probe.report().positiveLight, 4 * kPi - s0, 1e-12);
+  char share[32];
+  std::snprintf(share, sizeof share, "-%.1f %%", 100 * 2 * s0 / (4 * kPi - s0));
+  ASSERT_EQ(probe.report().notes.size(), 1u);
+  EXPECT_NE(probe.report().notes[0].find(share), std::string::npos) << probe.report().notes[0];
+  EXPECT_NE(probe.report().notes[0].find("Cycles renders"), std::string::npos);
+  // A share below 0.1 % is counted but not said: it does not show in a render.
+  pixels[3] = -1e-4f;
+  const Probe faint(ImageView{pixels.data(), 8, 4, 1}, ProjectionKind::LatLong);
+  ASSERT_EQ(faint.report().notes.size(), 1u);
+  EXPECT_EQ(faint.report().notes[0].find("Cycles"), std::string::npos) << faint.report().notes[0];
+}
+
 TEST(Probe, BufferViewIsNotCopied) {
   std::vector<float> pixels(16 * 8 * 3, 1.0f);
   Probe probe(ImageView{pixels.data(), 16, 8, 3}, ProjectionKind::LatLong);

@@ -28,7 +28,10 @@ struct ProbeOptions {
 
 // What validation found in the pixels.
 struct PixelReport {
-  long long negativeSamples = 0;   // clamped to 0 (lossy EXR compression produces them)
+  long long negativeSamples = 0;  // clamped to 0 (lossy EXR compression produces them)
+  // Luminance times solid angle of the negative samples (<= 0) and of the positive ones: the light the clamp
+  // takes away, which a renderer reading the image keeps (Cycles renders negative radiance).
+  double negativeLight = 0, positiveLight = 0;
   long long nonFiniteSamples = 0;  // NaN or Inf; only non-zero when NonFinitePolicy::Zero let them through
   int firstNonFiniteX = -1, firstNonFiniteY = -1;  // the first of them in row order
   std::vector<std::string> notes;  // one line each, for the user: "auto projection: ...", "clamped ..."
