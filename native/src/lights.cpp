@@ -27,8 +27,9 @@ std::vector<Light> lightsFromRegions(const Probe& probe, const std::vector<Rect>
                                      CentroidWeight centroid) {
   probe.requirePixels("summing lights from pixels");
   std::vector<PixelSums> sums(regions.size());
+  const bool squares = centroid == CentroidWeight::Energy2;
   parallelFor(static_cast<std::int64_t>(regions.size()),
-              [&](std::int64_t i) { sums[i] = sumPixels(probe, regions[i]); });
+              [&](std::int64_t i) { sums[i] = sumPixels(probe, regions[i], squares); });
   return lightsFromSums(probe, regions, sums, centroid);
 }
 

@@ -22,16 +22,14 @@ struct PixelSums {
   PixelSums& operator+=(const PixelSums& o);
 };
 
-// Adds pixels [x0, x1) of rows [y0, y1) to cells: pixel x goes to cells[(x - x0) / cellSize].
-// For a lat-long probe the direction is separable, d = (cos el cos phi, cos el sin phi, sin el) with phi
-// fixed on a column and el on a row. So the rows are first summed per column, sum_y Y dOmega_y (1, cos el_y,
-// sin el_y) and likewise for L and Y^2 (a loop with no dependency from one pixel to the next, which the
-// compiler vectorizes), and only then multiplied by cos phi and sin phi and gathered into cells: every pixel
-// is read once, with a few multiply-adds.
+// Adds pixels [x0, x1) of rows [y0, y1) to cells: pixel x goes to cells[(x - x0) / cellSize]. Row by row,
+// each row's pixels summed per cell with the row's weights (dOmega, cos el, sin el) applied once per cell; a
+// lat-long pixel's cos phi and sin phi come from the row's tables. squares = false leaves energy2 and moment2
+// at 0 (only the energy2 centroid needs them).
 void accumulateRows(const Probe& probe, int y0, int y1, int x0, int x1, int cellSize,
-                    std::span<PixelSums> cells);
+                    std::span<PixelSums> cells, bool squares = true);
 
 // The sums over a rectangle of pixels.
-PixelSums sumPixels(const Probe& probe, const Rect& pixels);
+PixelSums sumPixels(const Probe& probe, const Rect& pixels, bool squares = true);
 
 }  // namespace probelights
