@@ -5,6 +5,9 @@
 //
 //   build/bin/probelights_decode_bench                         the bundled probe resized to 8192 x 4096
 //   build/bin/probelights_decode_bench --benchmark_filter=hdr  one format
+//   PROBELIGHTS_LIBRARY=DIR build/bin/probelights_decode_bench --benchmark_filter=Library
+//                                          every image file of DIR read one after another (what `probelights
+//                                          bake DIR --out-dir` is measured against: scripts/bench_library.sh)
 // The files are made once in $TMPDIR/probelights_decode/ (Radiance .hdr, OpenEXR half and float with ZIP).
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
@@ -17,6 +20,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -24,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "probelights/batch.h"
 #include "probelights/image.h"
 
 namespace {
@@ -80,7 +85,7 @@ void BM_OIIO_WholeImage(benchmark::State& state) {
   const Format f = static_cast<Format>(state.range(0));
   const std::string path = file(f);
   setThreads(static_cast<int>(state.range(1)));
-  for (auto _ : state) benchmark::DoNotOptimize(readImage(path).pixels.data());
+  for (auto _ : state) benchmark::DoNotOptimize(readImage(path).pixels.get());
   report(state, f);
 }
 
@@ -181,6 +186,19 @@ void BM_PlainRgbe(benchmark::State& state) {
   report(state, kHdr);
 }
 
+// A library's reads alone: every file of $PROBELIGHTS_LIBRARY read whole, one after another, in this process.
+void BM_LibraryReads(benchmark::State& state) {
+  const char* dir = std::getenv("PROBELIGHTS_LIBRARY");
+  if (!dir) {
+    state.SkipWithError("set PROBELIGHTS_LIBRARY to a folder of probes");
+    return;
+  }
+  const std::vector<std::string> paths = expandProbePaths({dir});
+  for (auto _ : state)
+    for (const std::string& path : paths) benchmark::DoNotOptimize(readImage(path).pixels.get());
+  state.counters["files"] = static_cast<double>(paths.size());
+}
+
 void formatsAndThreads(benchmark::internal::Benchmark* b) {
   for (int f : {kHdr, kExrHalf, kExrFloat})
     for (int threads : {1, 2}) b->Args({f, threads});
@@ -202,6 +220,7 @@ BENCHMARK(BM_OpenEXR_ReadPixels)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_PlainRgbe)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_LibraryReads)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1)->Repetitions(6);
 
 }  // namespace
 

@@ -28,7 +28,7 @@ struct Kept {
   std::uint64_t released = 0;  // when it was given back: the older of two full slots makes room
 };
 std::mutex keptMutex;
-Kept kept[2];
+Kept kept[4];
 std::uint64_t releases = 0;
 
 }  // namespace
@@ -54,16 +54,34 @@ void KeptBufferDeleter::operator()(void* memory) const {
   if (!memory) return;
   {
     std::lock_guard<std::mutex> lock(keptMutex);
-    // An empty slot, else the one given back longer ago: the last two tables' buffers are kept.
-    Kept* slot = !kept[0].memory                        ? &kept[0]
-                 : !kept[1].memory                      ? &kept[1]
-                 : kept[0].released <= kept[1].released ? &kept[0]
-                                                        : &kept[1];
+    // Up to four buffers are kept (a library of small probes has three in flight, each an image and a table),
+    // of which at most two of 32 MB or more (the add-on's tables at 4K and 8K): a big one replaces the older
+    // big one once two are kept, anything else an empty slot or the one given back longest ago.
+    constexpr std::size_t kBig = std::size_t{32} << 20;
+    const bool big = capacity >= kBig;
+    int bigKept = 0;
+    for (const Kept& k : kept) bigKept += k.memory && k.capacity >= kBig;
+    Kept* slot = nullptr;
+    for (Kept& k : kept) {
+      if (big && bigKept >= 2 && k.capacity < kBig) continue;  // (an empty slot's capacity is 0)
+      if (!k.memory) {
+        slot = &k;
+        break;
+      }
+      if (!slot || k.released < slot->released) slot = &k;
+    }
     std::swap(slot->memory, memory);
     slot->capacity = capacity;
     slot->released = ++releases;
   }
   std::free(memory);  // the one not kept (null if the slot was empty)
+}
+
+std::size_t keptBytes() {
+  std::lock_guard<std::mutex> lock(keptMutex);
+  std::size_t bytes = 0;
+  for (const Kept& k : kept) bytes += k.memory ? k.capacity : 0;
+  return bytes;
 }
 
 void releaseKeptBuffers() {

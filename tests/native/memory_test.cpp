@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <vector>
+
 #include "probelights/bake.h"
 #include "test_probes.h"
 
@@ -29,6 +31,31 @@ TEST(KeptBuffers, AFreedBufferServesTheNextArrayThatFitsAndReleaseGivesThemBack)
   KeptArray<double> big = keptArray<double>(1 << 20);
   big[(1 << 20) - 1] = 1.0;  // usable to its end
   EXPECT_EQ(big[(1 << 20) - 1], 1.0);
+}
+
+TEST(KeptBuffers, FourSmallBuffersAreKeptButAtMostTwoBigOnes) {
+  releaseKeptBuffers();
+  constexpr std::size_t kSmall = std::size_t{6} << 20, kBig = std::size_t{40} << 20;
+  {
+    // A library of small probes: three in flight, each an image and a table.
+    std::vector<KeptArray<char>> inFlight;
+    for (int i = 0; i < 4; ++i) inFlight.push_back(keptArray<char>(kSmall));
+  }
+  EXPECT_EQ(keptBytes(), 4 * kSmall);
+  {
+    std::vector<KeptArray<char>> again;
+    for (int i = 0; i < 4; ++i) again.push_back(keptArray<char>(kSmall));
+    EXPECT_EQ(keptBytes(), 0u);  // all four served from the kept ones
+  }
+  releaseKeptBuffers();
+  {
+    std::vector<KeptArray<char>> big;
+    for (int i = 0; i < 3; ++i) big.push_back(keptArray<char>(kBig));
+    big.push_back(keptArray<char>(kSmall));
+  }
+  EXPECT_EQ(keptBytes(), 2 * kBig + kSmall);
+  releaseKeptBuffers();
+  EXPECT_EQ(keptBytes(), 0u);
 }
 
 TEST(KeptBuffers, BakesOnReusedBuffersGiveTheSameLights) {

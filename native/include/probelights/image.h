@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "probelights/memory.h"
+
 namespace probelights {
 
 // A read-only view of interleaved float pixels, rows top to bottom. Nothing is copied: the caller keeps the
@@ -29,15 +31,16 @@ struct ImageView {
   const float* pixel(int x, int y) const { return pixels + (y - firstRow) * rowStep() + x * pixelStep(); }
 };
 
-// An image that owns its pixels (what readImage returns).
+// An image that owns its pixels (what readImage returns): width * height * channels floats in a kept buffer
+// (memory.h), so probes read one after another (a library) do not map fresh pages for each.
 struct Image {
-  std::vector<float> pixels;
+  KeptArray<float> pixels;
   int width = 0;
   int height = 0;
   int channels = 0;
   std::string format;  // OpenImageIO's name of the file format, e.g. "openexr"
 
-  ImageView view() const { return {pixels.data(), width, height, channels}; }
+  ImageView view() const { return {pixels.get(), width, height, channels}; }
 };
 
 // Reads the first subimage, finest MIP level, all channels, as float, with OpenImageIO: any format it reads
