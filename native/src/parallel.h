@@ -9,6 +9,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "probelights/one_thread.h"
+
 #if PROBELIGHTS_PARALLEL_OIIO
 #include <OpenImageIO/parallel.h>
 #else
@@ -23,6 +25,10 @@ namespace probelights {
 // Runs task(i) for i in [0, n).
 template <class Task>
 void parallelFor(std::int64_t n, Task&& task) {
+  if (oneThread) {  // one_thread.h
+    for (std::int64_t i = 0; i < n; ++i) task(i);
+    return;
+  }
 #if PROBELIGHTS_PARALLEL_OIIO
   // OpenImageIO's parallel_for keeps ranges of fewer than 1024 items on one thread by default (paropt's
   // minitems); our items (rows of cells, regions) are each large, so allow one per task.

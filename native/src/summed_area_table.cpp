@@ -24,8 +24,30 @@ SummedAreaTable<K>::SummedAreaTable(int width, int height)
 
 template <int K>
 void SummedAreaTable<K>::fillRows(int y0, int y1, const RowValues& rowValues) {
-  // Pass 1: table row y + 1 holds the prefix sums along row y.
   const int width = width_;
+  if (oneThread && y0 == finalRows_) {
+    // Rows in order on one thread (parallel.h): each row's prefix sums go straight onto the running sums of
+    // the row above, still in cache, so the table is written once; the same additions in the same order as
+    // the two passes below (bit-identical).
+    std::vector<Values> row(static_cast<std::size_t>(width));
+    for (int y = y0; y < y1; ++y) {
+      std::fill(row.begin(), row.end(), Values{});
+      rowValues(y, std::span<Values>(row));
+      const double* above = entry(0, y);
+      double* out = entry(0, y + 1);
+      Values running{};
+      std::fill_n(out, K, 0.0);
+      for (int x = 0; x < width; ++x)
+        for (int k = 0; k < K; ++k) {
+          running[k] += row[x][k];
+          const std::size_t c = static_cast<std::size_t>(x + 1) * K + k;
+          out[c] = y == 0 ? running[k] : above[c] + running[k];
+        }
+    }
+    finalRows_ = y1;
+    return;
+  }
+  // Pass 1: table row y + 1 holds the prefix sums along row y.
   parallelFor(y1 - y0, [&](std::int64_t i) {
     const int y = y0 + static_cast<int>(i);
     thread_local std::vector<Values> row;
@@ -44,16 +66,18 @@ void SummedAreaTable<K>::fillRows(int y0, int y1, const RowValues& rowValues) {
 
 template <int K>
 void SummedAreaTable<K>::finish() {
-  // Pass 2: running sums down the columns, in blocks of columns.
+  // Pass 2: running sums down the columns, in blocks of columns, below the rows already final.
+  const int first = std::max(1, finalRows_);
   const int columns = (width_ + 1) * K, blocks = std::max(1, std::min(64, columns / 512));
   parallelFor(blocks, [&](std::int64_t b) {
     const int c0 = static_cast<int>(b * columns / blocks), c1 = static_cast<int>((b + 1) * columns / blocks);
-    for (int y = 1; y < height_; ++y) {
+    for (int y = first; y < height_; ++y) {
       const double* above = entry(0, y);
       double* out = entry(0, y + 1);
       for (int c = c0; c < c1; ++c) out[c] = above[c] + out[c];
     }
   });
+  finalRows_ = height_;
 }
 
 template class SummedAreaTable<1>;

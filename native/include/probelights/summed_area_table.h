@@ -43,7 +43,8 @@ class SummedAreaTable {
 
   // The same table built in parts, for rows that arrive in bands (a probe read band by band): allocate, then
   // fillRows() every row once (pass 1, in any order), then finish() (pass 2). The result is bit-identical to
-  // the one-call build.
+  // the one-call build. On a thread in an OnOneThread scope (parallel.h) rows given in order are summed down
+  // the columns as they come (one pass), and finish() has only the rest to do.
   SummedAreaTable(int width, int height);
   void fillRows(int y0, int y1, const RowValues& rowValues);
   void finish();
@@ -70,6 +71,8 @@ class SummedAreaTable {
   double* entry(int x, int y) { return table_.get() + (static_cast<std::size_t>(y) * (width_ + 1) + x) * K; }
 
   int width_ = 0, height_ = 0;
+  int finalRows_ =
+      0;  // rows 0 .. finalRows_ - 1 already hold their column sums (built in order on one thread)
   KeptArray<double> table_;  // reused across tables in a process (memory.h)
 };
 
