@@ -96,10 +96,17 @@ Evaluator::Evaluator(const Probe& probe, Effects effects, EvaluatorOptions optio
 Evaluator::Evaluator(const Probe& probe, const MomentTable& grid, Effects effects, EvaluatorOptions options)
     : Evaluator(probe, &grid, effects, options) {}
 
-void Evaluator::addSample(const Rgb& rgb, const Vec3& moment) {
-  if (rgb[0] <= 0 && rgb[1] <= 0 && rgb[2] <= 0) return;
+void Evaluator::addSample(const Projection& projection, const Rgb& rgb, const Vec3& moment, double u,
+                          double v) {
+  if (rgb[0] == 0 && rgb[1] == 0 && rgb[2] == 0) return;
   const double len = moment.length();
-  directions_.push_back(len > 0 ? (1.0 / len) * moment : Vec3{0, 0, 1});
+  if (len > 0) {
+    directions_.push_back((1.0 / len) * moment);
+  } else {
+    const auto d = projection.direction(u, v);
+    if (!d) return;
+    directions_.push_back(*d);
+  }
   radiance_.push_back(rgb);
 }
 
@@ -109,6 +116,8 @@ Evaluator::Evaluator(const Probe& probe, const MomentTable* grid, Effects effect
   const int maxWidth = std::max(1, options.maxWidth);
   const int cell = std::max(1, (probe.width() + maxWidth - 1) / maxWidth);
   const int cw = (probe.width() + cell - 1) / cell, ch = (probe.height() + cell - 1) / cell;
+  // The middle of sample i's pixels along an axis of n pixels, in [0, 1].
+  auto middle = [&](int i, int n) { return 0.5 * (i * cell + std::min(n, (i + 1) * cell)) / n; };
   if (grid && grid->hasCellSums() && cell % grid->cellSize() == 0) {
     // Each sample is a block of k x k cells of the grid: rgb from the cells' sums, the moment from its table.
     const int k = cell / grid->cellSize();
@@ -123,8 +132,10 @@ Evaluator::Evaluator(const Probe& probe, const MomentTable* grid, Effects effect
           }
           return row;
         },
-        [&](int&, const std::vector<std::pair<Rgb, Vec3>>& row, std::int64_t) {
-          for (const auto& [rgb, moment] : row) addSample(rgb, moment);
+        [&](int&, const std::vector<std::pair<Rgb, Vec3>>& row, std::int64_t y) {
+          for (int x = 0; x < cw; ++x)
+            addSample(probe.projection(), row[x].first, row[x].second, middle(x, probe.width()),
+                      middle(static_cast<int>(y), probe.height()));
         });
   } else {
     probe.requirePixels("evaluating lights");
@@ -137,8 +148,10 @@ Evaluator::Evaluator(const Probe& probe, const MomentTable* grid, Effects effect
                          row);
           return row;
         },
-        [&](int&, const std::vector<PixelSums>& row, std::int64_t) {
-          for (const PixelSums& s : row) addSample(s.rgb, s.moment);
+        [&](int&, const std::vector<PixelSums>& row, std::int64_t y) {
+          for (int x = 0; x < cw; ++x)
+            addSample(probe.projection(), row[x].rgb, row[x].moment, middle(x, probe.width()),
+                      middle(static_cast<int>(y), probe.height()));
         });
   }
   normals_ = fibonacciSphere(256);

@@ -38,10 +38,30 @@ std::vector<Light> lightsFromSums(const Probe& probe, const std::vector<Rect>& r
   double totalEnergy = 0;
   for (const PixelSums& s : sums) totalEnergy += s.energy;
 
+  // Negative samples are light too (Probe::light): Cycles renders them, so the lights' colours keep them. A
+  // lamp cannot be negative, though: a region whose light sums below 0 in a channel (a lossy EXR's ringing
+  // beside its sun, cut off on its own) or that has no positive light gives that light to the nearest light
+  // that can take it, and the lights still sum to the probe's integral.
+  struct Deficit {
+    Vec3 direction;
+    Rgb rgb;
+  };
+  std::vector<Deficit> deficits;
+  auto middle = [&](const Rect& r) {
+    auto d = probe.projection().direction((0.5 * (r.x0 + r.x1)) / probe.width(),
+                                          (0.5 * (r.y0 + r.y1)) / probe.height());
+    return d ? *d : Vec3{0, 0, 1};
+  };
+
   std::vector<Light> lights;
   for (std::size_t i = 0; i < regions.size(); ++i) {
     const PixelSums& s = sums[i];
-    if (!(s.energy > 0)) continue;
+    if (!(s.energy > 0)) {
+      if (s.rgb[0] < 0 || s.rgb[1] < 0 || s.rgb[2] < 0)
+        deficits.push_back({middle(regions[i]),
+                            {std::min(0.0, s.rgb[0]), std::min(0.0, s.rgb[1]), std::min(0.0, s.rgb[2])}});
+      continue;
+    }
     Light light;
     const bool energy = centroid == CentroidWeight::Energy;
     const Vec3& m = energy ? s.moment : s.moment2;
@@ -51,12 +71,15 @@ std::vector<Light> lightsFromSums(const Probe& probe, const std::vector<Rect>& r
     } else {
       // Light from every side of the region cancels (e.g. one region for a uniform sphere): no mean
       // direction, so take the region's middle.
-      const Rect& r = regions[i];
-      auto d = probe.projection().direction((0.5 * (r.x0 + r.x1)) / probe.width(),
-                                            (0.5 * (r.y0 + r.y1)) / probe.height());
-      light.direction = d ? *d : Vec3{0, 0, 1};
+      light.direction = middle(regions[i]);
     }
     light.rgb = s.rgb;
+    if (s.rgb[0] < 0 || s.rgb[1] < 0 || s.rgb[2] < 0) {
+      Deficit d{light.direction, {}};
+      for (int k = 0; k < 3; ++k)
+        if (s.rgb[k] < 0) d.rgb[k] = s.rgb[k], light.rgb[k] = 0;
+      deficits.push_back(d);
+    }
     light.solidAngle = s.solidAngle;
     // Angular radius of the cap whose light is as spread as the region's: for a uniform cap of radius a the
     // mean resultant length |sum w d| / sum w is (1 + cos a) / 2, so cos a = 2 R - 1. A one-pixel sun gives
@@ -70,6 +93,16 @@ std::vector<Light> lightsFromSums(const Probe& probe, const std::vector<Rect>& r
     light.energyShare = s.energy / totalEnergy;
     lights.push_back(light);
   }
+  for (const Deficit& d : deficits)
+    for (int k = 0; k < 3; ++k) {
+      if (!(d.rgb[k] < 0)) continue;
+      Light* nearest = nullptr;
+      for (Light& l : lights)
+        if (l.rgb[k] + d.rgb[k] >= 0 &&
+            (!nearest || dot(l.direction, d.direction) > dot(nearest->direction, d.direction)))
+          nearest = &l;
+      if (nearest) nearest->rgb[k] += d.rgb[k];  // else (no light has that much) it is not rendered
+    }
   return lights;
 }
 

@@ -117,8 +117,9 @@ void MomentTable::addLatLongPixels(const Probe& band, int y0, int y1) {
     double r = 0, g = 0, b = 0, energy = 0;
     long long lit = 0;
     for (int x = 0; x < pixelWidth_; ++x, p += step) {
-      const double R = Probe::sanitize(p[0]), G = grey ? R : Probe::sanitize(p[1]),
-                   B = grey ? R : Probe::sanitize(p[2]);
+      const double Rs = Probe::finite(p[0]), Gs = grey ? Rs : Probe::finite(p[1]),
+                   Bs = grey ? Rs : Probe::finite(p[2]);
+      const double R = Rs > 0 ? Rs : 0.0, G = Gs > 0 ? Gs : 0.0, B = Bs > 0 ? Bs : 0.0;
       const double Y = luminance(R, G, B);
       double sY = 0, sYc = 0, sYs = 0;
       sY += Y, sYc += Y * row.cosPhi[x], sYs += Y * row.sinPhi[x];
@@ -126,7 +127,7 @@ void MomentTable::addLatLongPixels(const Probe& band, int y0, int y1) {
       e += sY * dw, mx += dwCos * sYc, my += dwCos * sYs, mz += dwSin * sY;
       out[x] = {e, mx, my, mz, Y > 0 ? 1.0 : 0.0};
       double cr = 0, cg = 0, cb = 0, sr = 0, sg = 0, sb = 0;
-      sr += R, sg += G, sb += B;
+      sr += Rs, sg += Gs, sb += Bs;
       cr += sr * dw, cg += sg * dw, cb += sb * dw;
       r += cr, g += cg, b += cb, energy += e;
       lit += Y > 0;

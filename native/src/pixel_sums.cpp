@@ -31,10 +31,12 @@ void accumulateRows(const Probe& probe, int y0, int y1, int x0, int x1, int cell
         double r = 0, g = 0, b = 0, sY = 0, sYc = 0, sYs = 0, sY2 = 0, sY2c = 0, sY2s = 0;
         long long lit = 0;
         for (; x < end; ++x, p += step) {
-          double R = Probe::sanitize(p[0]), G = R, B = R;
-          if constexpr (!Grey) G = Probe::sanitize(p[1]), B = Probe::sanitize(p[2]);
+          // Colours keep a negative sample's sign (Probe::light); the weights read it as 0.
+          double Rs = Probe::finite(p[0]), Gs = Rs, Bs = Rs;
+          if constexpr (!Grey) Gs = Probe::finite(p[1]), Bs = Probe::finite(p[2]);
+          const double R = Rs > 0 ? Rs : 0.0, G = Gs > 0 ? Gs : 0.0, B = Bs > 0 ? Bs : 0.0;
           const double Y = luminance(R, G, B), Y2 = Y * Y;
-          r += R, g += G, b += B;
+          r += Rs, g += Gs, b += Bs;
           sY += Y, sYc += Y * row.cosPhi[x], sYs += Y * row.sinPhi[x];
           if constexpr (Squares) sY2 += Y2, sY2c += Y2 * row.cosPhi[x], sY2s += Y2 * row.sinPhi[x];
           lit += Y > 0;
@@ -76,10 +78,10 @@ void accumulateRows(const Probe& probe, int y0, int y1, int x0, int x1, int cell
     projection.rowGeometry(y, x0, x1, dirs, omega);
     for (int x = x0; x < x1; ++x) {
       PixelSums& s = cells[(x - x0) / cellSize];
-      const Rgb L = probe.radiance(x, y);
+      const Rgb light = probe.light(x, y), L = probe.radiance(x, y);
       const double dw = omega[x - x0], Y = luminance(L), w = Y * dw;
       const Vec3& d = dirs[x - x0];
-      for (int k = 0; k < 3; ++k) s.rgb[k] += L[k] * dw;
+      for (int k = 0; k < 3; ++k) s.rgb[k] += light[k] * dw;
       s.solidAngle += dw;
       s.energy += w;
       s.moment += w * d;

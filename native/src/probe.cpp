@@ -198,17 +198,16 @@ void PixelReport::settle(NonFinitePolicy policy) {
     notes.push_back("read " + std::to_string(nonFiniteSamples) + " NaN/Inf samples as 0 (" + where + ")");
   }
   if (negativeSamples > 0) {
-    std::string line = "clamped " + std::to_string(negativeSamples) +
-                       " negative samples to 0 (lossy compression produces them)";
-    // Said when it shows in a render: Cycles keeps negative radiance, so the world-lit render is that much
-    // darker than any lights (measured on pmndrs_esplanade: 6.5 % of the light, renders 7-9 % apart).
+    std::string line = std::to_string(negativeSamples) +
+                       " negative samples (lossy compression produces them): the cuts weigh them as 0, the "
+                       "lights keep their light";
+    // Their share, when it shows in a render: Cycles renders negative radiance too, which is why the lights
+    // keep it (Probe::light; measured on pmndrs_esplanade: 6.5 % of the light, renders 7-9 % apart when the
+    // lights dropped it).
     const double share = positiveLight > 0 ? -negativeLight / positiveLight : 0.0;
     if (share >= 0.001) {
-      char text[160];
-      std::snprintf(text, sizeof text,
-                    "; they hold -%.1f %% of the probe's light, which Cycles renders: expect the world-lit "
-                    "render that much darker than the lamps",
-                    100 * share);
+      char text[120];
+      std::snprintf(text, sizeof text, " (-%.1f %% of the probe's light, as Cycles renders it)", 100 * share);
       line += text;
     }
     notes.push_back(line);
@@ -250,7 +249,7 @@ Rgb Probe::integral() const {
         projection_.rowGeometry(static_cast<int>(y), 0, view_.width, dirs, omega);
         Rgb s{};
         for (int x = 0; x < view_.width; ++x) {
-          Rgb L = radiance(x, static_cast<int>(y));
+          Rgb L = light(x, static_cast<int>(y));
           for (int k = 0; k < 3; ++k) s[k] += L[k] * omega[x];
         }
         return s;

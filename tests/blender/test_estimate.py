@@ -39,7 +39,7 @@ def noisy_pair():
     return first, render_scene.relative_rms(first, second) / math.sqrt(2)
 
 
-def estimate_against_render(probe):
+def estimate_against_render(probe, counts=(8, 16, 64)):
     harness.empty_scene()
     world = harness.env_world(bpy.data.images.load(probe))
     # The truth is the probe's pixels: the world shows them unfiltered (Blender's default, Linear, blurs each by
@@ -49,7 +49,7 @@ def estimate_against_render(probe):
     world, world_noise = noisy_pair()
     settings = bpy.context.scene.probe_lights
     worst = 0.0
-    for n in (8, 16, 64):
+    for n in counts:
         bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=n, shadows="FIT", refit=False)
         lit, lamp_noise = noisy_pair()
         rendered = render_scene.relative_rms(world, lit)
@@ -72,4 +72,14 @@ def test_the_estimated_shadow_error_is_the_rendered_one():
     print("  worst |estimate - rendered| / bound: %.2f" % worst)
 
 
-harness.run([test_the_estimated_shadow_error_is_the_rendered_one])
+def test_negative_samples_are_light_the_lamps_and_the_estimate_keep():
+    """pmndrs_esplanade_dwab (../shared): DWAB's ringing leaves 5054 negative samples beside its sun, -6.5 % of its
+    light, which Cycles renders. When the lights and the estimate dropped them, 16 suns rendered 10.2 % from the
+    world-lit render against an estimate of 2.5 %; keeping them, the two agree (4.5.15: 2.59 % / 2.70 %)."""
+    probe = harness.shared_probe(a, "pmndrs_esplanade_dwab.exr")
+    if probe:
+        estimate_against_render(probe, counts=(16,))
+
+
+harness.run([test_the_estimated_shadow_error_is_the_rendered_one,
+             test_negative_samples_are_light_the_lamps_and_the_estimate_keep])

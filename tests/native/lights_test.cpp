@@ -1,4 +1,4 @@
-// lightsFromRegions: a region's angular radius and the centroid weights.
+// lightsFromRegions: a region's angular radius, the centroid weights, and negative light.
 #include <gtest/gtest.h>
 
 #include "probelights/bake.h"
@@ -23,6 +23,22 @@ TEST(LightsFromRegions, AngularRadiusOfAUniformCap) {
   ASSERT_EQ(r.lights.size(), 1u);
   EXPECT_NEAR(r.lights[0].angularRadius, cap, 0.01);
   EXPECT_NEAR(r.lights[0].direction.z, 1.0, 1e-12);
+}
+
+TEST(LightsFromRegions, NegativeLightGoesToTheNearestLightThatCanTakeIt) {
+  // Three regions of an 8 x 4 probe: A bright (+x), B with net negative red (a lossy EXR's ringing cut off
+  // beside its sun), C with no positive light at all. No light may be negative, and the lights' sums stay the
+  // regions' sums: B's and C's negative red go to A, the only light with that much red.
+  auto t = makeProbe(8, 4, ProjectionKind::LatLong, [](int, int) { return Rgb{1, 1, 1}; });
+  const std::vector<Rect> regions{{0, 0, 4, 4}, {4, 0, 6, 4}, {6, 0, 8, 4}};
+  std::vector<PixelSums> sums(3);
+  sums[0].rgb = {5, 5, 5}, sums[0].energy = 5, sums[0].moment = {5, 0, 0}, sums[0].solidAngle = 2;
+  sums[1].rgb = {-1, 2, 2}, sums[1].energy = 1, sums[1].moment = {0, 1, 0}, sums[1].solidAngle = 1;
+  sums[2].rgb = {-0.5, -0.5, 0}, sums[2].energy = 0, sums[2].solidAngle = 1;
+  const std::vector<Light> lights = lightsFromSums(t.probe, regions, sums, CentroidWeight::Energy);
+  ASSERT_EQ(lights.size(), 2u);
+  EXPECT_EQ(lights[0].rgb, (Rgb{3.5, 4.5, 5}));
+  EXPECT_EQ(lights[1].rgb, (Rgb{0, 2, 2}));
 }
 
 TEST(LightsFromRegions, Energy2CentroidLeansTowardsTheBrightestPixels) {

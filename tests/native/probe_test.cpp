@@ -75,7 +75,7 @@ TEST(Probe, RealProbesEveryProbeBakesAndConservesEnergy) {
   }
 }
 
-TEST(Probe, RealProbesNegativeSamplesOfLossyExrAreClampedAndCounted) {
+TEST(Probe, RealProbesNegativeSamplesOfLossyExrAreWeighedAsZeroCountedAndKeptInTheLights) {
   fs::path f = fs::path(PROBELIGHTS_SHARED_HDRI) / "pmndrs_esplanade_dwab.exr";
   if (!fs::exists(f)) GTEST_SKIP() << "skipped: ../shared not found (" << f << ")";
   Probe probe = Probe::load(f.string());
@@ -84,6 +84,27 @@ TEST(Probe, RealProbesNegativeSamplesOfLossyExrAreClampedAndCounted) {
   for (int y = 0; y < probe.height(); ++y)
     for (int x = 0; x < probe.width(); ++x)
       for (double c : probe.radiance(x, y)) ASSERT_GE(c, 0.0);
+  // The lights carry the signed integral (what Cycles renders), -6.8 % in red against the clamped samples'.
+  Rgb clamped{};
+  for (int y = 0; y < probe.height(); ++y)
+    for (int x = 0; x < probe.width(); ++x)
+      for (int k = 0; k < 3; ++k)
+        clamped[k] += probe.radiance(x, y)[k] * probe.projection().pixelSolidAngle(x, y);
+  const Rgb integral = probe.integral();
+  EXPECT_NEAR(integral[0] / clamped[0], 0.932, 0.002);
+  for (Method m : {Method::MedianCut, Method::Variance})
+    for (int n : {16, 64}) {
+      BakeOptions o;
+      o.method = m, o.lights = n;
+      const BakeResult r = bake(probe, o);
+      Rgb sum{};
+      for (const Light& l : r.lights)
+        for (int k = 0; k < 3; ++k) {
+          EXPECT_GE(l.rgb[k], 0.0);
+          sum[k] += l.rgb[k];
+        }
+      EXPECT_LE(maxRelativeDifference(sum, integral), 1e-9) << n;
+    }
 }
 
 TEST(Probe, NegativeSamplesSayTheLightTheyHold) {
@@ -101,7 +122,14 @@ TEST(Probe, NegativeSamplesSayTheLightTheyHold) {
   std::snprintf(share, sizeof share, "-%.1f %%", 100 * 2 * s0 / (4 * kPi - s0));
   ASSERT_EQ(probe.report().notes.size(), 1u);
   EXPECT_NE(probe.report().notes[0].find(share), std::string::npos) << probe.report().notes[0];
-  EXPECT_NE(probe.report().notes[0].find("Cycles renders"), std::string::npos);
+  EXPECT_NE(probe.report().notes[0].find("as Cycles renders it"), std::string::npos);
+  // The lights keep that light (Cycles renders it): one light carries the probe's signed integral.
+  BakeOptions one;
+  one.lights = 1;
+  const BakeResult r = bake(probe, one);
+  ASSERT_EQ(r.lights.size(), 1u);
+  EXPECT_NEAR(r.lights[0].rgb[0], 4 * kPi - s0 - 2 * s0, 1e-12);
+  EXPECT_NEAR(probe.integral()[0], 4 * kPi - 3 * s0, 1e-12);
   // A share below 0.1 % is counted but not said: it does not show in a render.
   pixels[3] = -1e-4f;
   const Probe faint(ImageView{pixels.data(), 8, 4, 1}, ProjectionKind::LatLong);

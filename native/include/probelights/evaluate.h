@@ -122,7 +122,9 @@ class Evaluator {
 
  private:
   Evaluator(const Probe& probe, const MomentTable* grid, Effects effects, EvaluatorOptions options);
-  void addSample(const Rgb& rgb, const Vec3& moment);
+  // A sample of the truth: its light (signed: Probe::light) from the luminance-weighted mean direction, or
+  // from the middle of its pixels (u, v in [0, 1]) when it has no positive luminance (only negative samples).
+  void addSample(const Projection& projection, const Rgb& rgb, const Vec3& moment, double u, double v);
 
   Effects effects_;
   SunProfile profile_ = SunProfile::Cone;

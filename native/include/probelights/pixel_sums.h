@@ -11,7 +11,7 @@ namespace probelights {
 // With w = Y dOmega (Y = Rec. 709 luminance of the pixel's radiance L, dOmega its exact solid angle, d its
 // unit direction), over a set of pixels:
 struct PixelSums {
-  Rgb rgb{};                // sum of L dOmega
+  Rgb rgb{};                // sum of L dOmega, L signed (Probe::light); the rest weigh L clamped at 0
   double solidAngle = 0;    // sum of dOmega
   double energy = 0;        // sum of w
   Vec3 moment;              // sum of w d

@@ -83,11 +83,28 @@ class Probe {
     }
     return {sanitize(p[0]), sanitize(p[1]), sanitize(p[2])};
   }
-  // A sample as every stage reads it: negative, NaN and Inf read as 0 (validation has refused NaN/Inf unless
-  // the policy let them through).
+  // A sample as the cuts weigh it: negative, NaN and Inf read as 0 (validation has refused NaN/Inf unless the
+  // policy let them through).
   static double sanitize(float v) { return (v > 0.0f && v <= 3.4028234e38f) ? static_cast<double>(v) : 0.0; }
 
-  // The probe's integral of L over the sphere, sum of L * dOmega per channel (reference for energy checks).
+  // The light of pixel (x, y) as a renderer has it: like radiance(), but a negative sample keeps its sign.
+  // Cycles renders negative samples (a lossy EXR's ringing darkens its world-lit render: pmndrs_esplanade's
+  // hold -6.5 % of its light), so the lights' colours, the probe's integral and the evaluator's truth sum
+  // light(); the cuts weigh radiance(), as energy must not be negative.
+  Rgb light(int x, int y) const {
+    const float* p = view_.pixel(x, y);
+    if (view_.channels < 3) {
+      double g = finite(p[0]);
+      return {g, g, g};
+    }
+    return {finite(p[0]), finite(p[1]), finite(p[2])};
+  }
+  static double finite(float v) {
+    return (v >= -3.4028234e38f && v <= 3.4028234e38f) ? static_cast<double>(v) : 0.0;
+  }
+
+  // The probe's integral of L over the sphere, sum of L * dOmega per channel with L = light() (reference for
+  // energy checks).
   Rgb integral() const;
 
  private:
