@@ -24,44 +24,31 @@ SummedAreaTable<K>::SummedAreaTable(int width, int height)
 
 template <int K>
 void SummedAreaTable<K>::fillRows(int y0, int y1, const RowValues& rowValues) {
-  const int width = width_;
-  if (oneThread && y0 == finalRows_) {
-    // Rows in order on one thread (parallel.h): each row's prefix sums go straight onto the running sums of
-    // the row above, still in cache, so the table is written once; the same additions in the same order as
-    // the two passes below (bit-identical).
-    std::vector<Values> row(static_cast<std::size_t>(width));
-    for (int y = y0; y < y1; ++y) {
-      std::fill(row.begin(), row.end(), Values{});
-      rowValues(y, std::span<Values>(row));
-      const double* above = entry(0, y);
-      double* out = entry(0, y + 1);
-      Values running{};
-      std::fill_n(out, K, 0.0);
-      for (int x = 0; x < width; ++x)
-        for (int k = 0; k < K; ++k) {
-          running[k] += row[x][k];
-          const std::size_t c = static_cast<std::size_t>(x + 1) * K + k;
-          out[c] = y == 0 ? running[k] : above[c] + running[k];
-        }
-    }
-    finalRows_ = y1;
-    return;
-  }
-  // Pass 1: table row y + 1 holds the prefix sums along row y.
-  parallelFor(y1 - y0, [&](std::int64_t i) {
-    const int y = y0 + static_cast<int>(i);
+  // Table row y + 1 gets the prefix sums along row y, added to the row above when `above` is given.
+  auto writeRow = [&](int y, const double* above) {
     thread_local std::vector<Values> row;
-    row.assign(static_cast<std::size_t>(width), Values{});
+    row.assign(static_cast<std::size_t>(width_), Values{});
     rowValues(y, std::span<Values>(row));
     double* out = entry(0, y + 1);
     Values running{};
     std::fill_n(out, K, 0.0);
-    for (int x = 0; x < width; ++x)
+    for (int x = 0; x < width_; ++x)
       for (int k = 0; k < K; ++k) {
         running[k] += row[x][k];
-        out[(x + 1) * K + k] = running[k];
+        const std::size_t c = static_cast<std::size_t>(x + 1) * K + k;
+        out[c] = above ? above[c] + running[k] : running[k];
       }
-  });
+  };
+  if (oneThread && y0 == finalRows_) {
+    // Rows in order on one thread (one_thread.h): each row's prefix sums go straight onto the running sums of
+    // the row above, still in cache, so the table is written once; the same additions in the same order as
+    // the two passes (bit-identical).
+    for (int y = y0; y < y1; ++y) writeRow(y, y == 0 ? nullptr : entry(0, y));
+    finalRows_ = y1;
+    return;
+  }
+  // Pass 1 of two: the prefix sums along each row, rows spread over the threads.
+  parallelFor(y1 - y0, [&](std::int64_t i) { writeRow(y0 + static_cast<int>(i), nullptr); });
 }
 
 template <int K>

@@ -75,14 +75,7 @@ class Probe {
 
   // Radiance of pixel (x, y) as RGB: grey replicated, alpha ignored, negatives and (allowed) non-finite read
   // as 0.
-  Rgb radiance(int x, int y) const {
-    const float* p = view_.pixel(x, y);
-    if (view_.channels < 3) {
-      double g = sanitize(p[0]);
-      return {g, g, g};
-    }
-    return {sanitize(p[0]), sanitize(p[1]), sanitize(p[2])};
-  }
+  Rgb radiance(int x, int y) const { return pixel(x, y, sanitize); }
   // A sample as the cuts weigh it: negative, NaN and Inf read as 0 (validation has refused NaN/Inf unless the
   // policy let them through).
   static double sanitize(float v) { return (v > 0.0f && v <= 3.4028234e38f) ? static_cast<double>(v) : 0.0; }
@@ -91,14 +84,7 @@ class Probe {
   // Cycles renders negative samples (a lossy EXR's ringing darkens its world-lit render: pmndrs_esplanade's
   // hold -6.5 % of its light), so the lights' colours, the probe's integral and the evaluator's truth sum
   // light(); the cuts weigh radiance(), as energy must not be negative.
-  Rgb light(int x, int y) const {
-    const float* p = view_.pixel(x, y);
-    if (view_.channels < 3) {
-      double g = finite(p[0]);
-      return {g, g, g};
-    }
-    return {finite(p[0]), finite(p[1]), finite(p[2])};
-  }
+  Rgb light(int x, int y) const { return pixel(x, y, finite); }
   static double finite(float v) {
     return (v >= -3.4028234e38f && v <= 3.4028234e38f) ? static_cast<double>(v) : 0.0;
   }
@@ -110,6 +96,15 @@ class Probe {
  private:
   Probe(ImageView view, const Projection& projection);
   void count();  // the report's counts of the view's rows
+  // Pixel (x, y) as RGB, each sample read by `read`: grey replicated, alpha ignored.
+  Rgb pixel(int x, int y, double (*read)(float)) const {
+    const float* p = view_.pixel(x, y);
+    if (view_.channels < 3) {
+      const double g = read(p[0]);
+      return {g, g, g};
+    }
+    return {read(p[0]), read(p[1]), read(p[2])};
+  }
   void validate(NonFinitePolicy nonFinite);
 
   std::shared_ptr<const Image> owned_;
