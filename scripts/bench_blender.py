@@ -1,6 +1,6 @@
 """One-click bake time in Blender: 64 suns from the bundled probe at 1K and resized to 2K, 4K and 8K, in any Blender
 the tests cover (the add-on installed from the zip as the tests do), with the click's stages (read the image's
-pixels, bake with the estimate, make the lamps):
+pixels, bake with the estimate, make the lamps); PROBELIGHTS_BENCH_REFIT=1 times the clicks with Refit on:
 
   oiiotool assets/noon_grass_1k.hdr --resize 2048x1024 -o /tmp/noon_2k.exr
   oiiotool assets/noon_grass_1k.hdr --resize 4096x2048 -o /tmp/noon_4k.exr
@@ -28,13 +28,15 @@ for path in (p for p in (harness.BUNDLED_PROBE, "/tmp/noon_2k.exr", "/tmp/noon_4
     times, stages = [], []
     settings = bpy.context.scene.probe_lights
     settings.count = 64
+    settings.refit = bool(os.environ.get("PROBELIGHTS_BENCH_REFIT"))
     for i in range(3):
         t = time.perf_counter()
         bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=64)
         times.append(1000 * (time.perf_counter() - t))
     for i in range(3):
         stages.append(bake.bake_world(bpy.context, settings)["timings"])
-    print("TIMING Blender %s, %s %dx%d: one click, 64 suns incl. estimate: %s ms; stages (read / bake+estimate / "
+    print("TIMING Blender %s, %s %dx%d: one click, 64 suns%s incl. estimate: %s ms; stages (read / bake+estimate / "
           "lamps): %s ms" % (bpy.app.version_string, os.path.basename(path), img.size[0], img.size[1],
+                             " with Refit" if settings.refit else "",
                              " / ".join("%.0f" % t for t in times),
                              ", ".join("%.0f / %.0f / %.0f" % (s["probe"], s["bake"], s["lamps"]) for s in stages)))

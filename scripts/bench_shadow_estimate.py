@@ -1,8 +1,8 @@
 """Does the estimate predict the render? The evaluator's shadow scene (a plane under a unit sphere, direct light;
 render_scene.ground_under_sphere) rendered by Cycles lit by the world and by 16 and 64 baked suns, for each
 shadow choice (Hard: points; Region spread: the angle before issue 9; Fitted; Fitted with the refit): the rendered
-relative RMS difference beside the add-on's estimate of it, and the renders' noise (README table; for every probe:
-scripts/bench_shadow_table.sh).
+relative RMS difference beside the add-on's estimate of it, the renders' noise, and the difference with both
+renders' noise taken out (README table; for every probe: scripts/bench_shadow_table.sh).
 
     tests/blender/run.sh ~/.cache/probelights/bpy-4.5.15/bin/python scripts/bench_shadow_estimate.py \\
         build/probe_lights.zip ../shared [PROBE] [SAMPLES]
@@ -30,14 +30,21 @@ bpy.context.scene.cycles.seed = 1
 print("ESTIMATE Blender %s, %s, %d spp: world noise %.2f %%" % (
     bpy.app.version_string, os.path.basename(probe), samples, 100 * floor))
 settings = bpy.context.scene.probe_lights
+# PROBELIGHTS_SHADOW_CHOICES="FIT,FIT+refit" renders only those choices (default: all four).
+CHOICES = (("HARD", False), ("SPREAD", False), ("FIT", False), ("FIT", True))
+wanted = os.environ.get("PROBELIGHTS_SHADOW_CHOICES")
+if wanted:
+    CHOICES = [c for c in CHOICES if c[0] + ("+refit" if c[1] else "") in wanted.split(",")]
 for n in (16, 64):
-    for shadows, refit in (("HARD", False), ("SPREAD", False), ("FIT", False), ("FIT", True)):
+    for shadows, refit in CHOICES:
         bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=n, shadows=shadows, refit=refit)
         lit = render_scene.render()
         rendered = render_scene.relative_rms(world, lit)
         bpy.context.scene.cycles.seed = 2
         noise = render_scene.relative_rms(lit, render_scene.render()) / 2 ** 0.5
         bpy.context.scene.cycles.seed = 1
-        print("ESTIMATE %3d suns %-6s%s: estimate %.2f %%, rendered %.2f %% (lamps' noise %.2f %%)" % (
-            n, shadows, " refit" if refit else "      ", settings.last_shadow_error, 100 * rendered, 100 * noise),
-            flush=True)
+        # Both renders' noise taken out (independent noise adds in squares): what the lights alone differ by.
+        clean = max(0.0, rendered ** 2 - floor ** 2 - noise ** 2) ** 0.5
+        print("ESTIMATE %3d suns %-6s%s: estimate %.2f %%, rendered %.2f %% (lamps' noise %.2f %%; less both "
+              "noises %.2f %%)" % (n, shadows, " refit" if refit else "      ", settings.last_shadow_error,
+                                   100 * rendered, 100 * noise, 100 * clean), flush=True)

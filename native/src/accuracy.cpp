@@ -35,14 +35,14 @@ std::vector<Light> finishLights(const Evaluator& evaluator, std::vector<Light> l
   // Angles first, so the directions move for the shadows the lights will cast; then again for the moved
   // lights, and their colours for those angles. The refit is kept only if it fits the fit receivers better
   // (the joint fit can lose on shadows what it wins on shading).
-  const bool fitted = applySunAngles(angles, &evaluator, lights);
+  const bool fitted = applySunAngles(angles, &evaluator, lights, refit);
   if (refit) {
     std::vector<Light> moved = refitIrradiance(evaluator, lights, nullptr, moveDirections);
     if (fitted) {
-      applySunAngles(angles, &evaluator, moved);
+      applySunAngles(angles, &evaluator, moved, true);
       moved = refitIrradiance(evaluator, moved);
     }
-    const std::vector<Receiver> receivers = evaluator.fitReceivers();
+    const std::vector<Receiver> receivers = evaluator.fitReceivers(true);
     if (fitError(evaluator, receivers, moved) <= fitError(evaluator, receivers, lights))
       lights = std::move(moved);
   }

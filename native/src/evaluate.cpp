@@ -57,6 +57,15 @@ std::vector<Vec3> fibonacciSphere(int n) {
   return v;
 }
 
+// n x n ground points at the middles of the cells of [-2.5, 2.5]^2 (z = 0): the shadow scene's receivers.
+std::vector<Vec3> groundGrid(int n) {
+  std::vector<Vec3> points;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      points.push_back({-2.5 + 5.0 * (i + 0.5) / n, -2.5 + 5.0 * (j + 0.5) / n, 0.0});
+  return points;
+}
+
 double lobe(double c, int exponent) {  // max(0, c)^exponent for exponent a power of two, by squaring
   if (c <= 0) return 0;
   double v = c;
@@ -166,15 +175,15 @@ Evaluator::Evaluator(const Probe& probe, const MomentTable* grid, Effects effect
     }
   }
   if (effects & kShadow) {
-    for (int i = 0; i < 16; ++i)
-      for (int j = 0; j < 16; ++j)
-        points_.push_back({-2.5 + 5.0 * (i + 0.5) / 16, -2.5 + 5.0 * (j + 0.5) / 16, 0.0});
+    points_ = groundGrid(16);
     for (const Vec3& p : points_) pointCaps_.push_back(sphereCap(p, {0, 0, 1}, 1.0));
     shadow_ = shadowTruthAt(points_);
-    for (int i = 0; i < 20; ++i)
-      for (int j = 0; j < 20; ++j)
-        fitPoints_.push_back({-2.5 + 5.0 * (i + 0.5) / 20, -2.5 + 5.0 * (j + 0.5) / 20, 0.0});
+    fitPoints_ = groundGrid(20);
     fitShadow_ = shadowTruthAt(fitPoints_);
+    if (options.forRefit) {
+      refitPoints_ = groundGrid(32);
+      refitShadow_ = shadowTruthAt(refitPoints_);
+    }
   }
   if (effects & kGlossy)
     for (int e = 0; e < 2; ++e)
@@ -241,7 +250,7 @@ std::vector<Rgb> Evaluator::shadowTruthAt(const std::vector<Vec3>& points) const
   return out;
 }
 
-std::vector<Receiver> Evaluator::fitReceivers() const {
+std::vector<Receiver> Evaluator::fitReceivers(bool refit) const {
   std::vector<Receiver> out;
   auto add = [&](const std::vector<Vec3>& at, const std::vector<Rgb>& truth, bool ground) {
     double sum = 0;
@@ -254,7 +263,10 @@ std::vector<Receiver> Evaluator::fitReceivers() const {
     add(fitNormals_, fitTruth_, false);
   else if (!diffuse_.empty())
     add(normals_, diffuse_, false);
-  add(fitPoints_, fitShadow_, true);
+  if (refit && !refitPoints_.empty())
+    add(refitPoints_, refitShadow_, true);
+  else
+    add(fitPoints_, fitShadow_, true);
   return out;
 }
 

@@ -71,11 +71,11 @@ void moveDirections(const Evaluator& evaluator, const std::vector<Receiver>& rec
 
 std::vector<Light> refitIrradiance(const Evaluator& evaluator, const std::vector<Light>& lights,
                                    double* energyShift, bool moveDirs) {
-  // Fitted on the evaluator's fit receivers (1024 normals, and 400 ground points with shadows), not the
+  // Fitted on the evaluator's fit receivers (1024 normals, and 1024 ground points with shadows), not the
   // points the error is measured on, so the error of a refit is not flattered.
   if (evaluator.fitNormals().empty())
     throw Error("the irradiance refit needs an evaluator made for it (diffuse, forRefit)");
-  const std::vector<Receiver> receivers = evaluator.fitReceivers();
+  const std::vector<Receiver> receivers = evaluator.fitReceivers(true);
   if (lights.size() > kMaxRefitLights)
     throw Error("the irradiance refit takes at most " + std::to_string(kMaxRefitLights) + " lights, got " +
                 std::to_string(lights.size()));

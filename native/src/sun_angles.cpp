@@ -23,11 +23,11 @@ constexpr double kSmallest =
 std::string toString(SunAngles angles) { return std::string(nameOf(kSunAngles, angles)); }
 SunAngles parseSunAngles(const std::string& name) { return parseName(kSunAngles, "sun angles", name); }
 
-void fitSunAngles(const Evaluator& evaluator, std::vector<Light>& lights) {
+void fitSunAngles(const Evaluator& evaluator, std::vector<Light>& lights, bool refitReceivers) {
   if (!(evaluator.effects() & kShadow)) throw Error("fitting sun angles needs the shadow effect evaluated");
   // The fit receivers (evaluate.h): ground points under the sphere and normals, each set weighted so the
   // objective is shadow error^2 + diffuse error^2 (on points the errors are not measured on).
-  const std::vector<Receiver> receivers = evaluator.fitReceivers();
+  const std::vector<Receiver> receivers = evaluator.fitReceivers(refitReceivers);
   const std::size_t m = receivers.size();
   if (m == 0 || lights.empty()) return;
 
@@ -97,7 +97,8 @@ void fitSunAngles(const Evaluator& evaluator, std::vector<Light>& lights) {
     }
 }
 
-bool applySunAngles(SunAngles choice, const Evaluator* evaluator, std::vector<Light>& lights) {
+bool applySunAngles(SunAngles choice, const Evaluator* evaluator, std::vector<Light>& lights,
+                    bool refitReceivers) {
   switch (choice) {
     case SunAngles::Points:
       for (Light& l : lights) l.angle = 0;
@@ -106,7 +107,7 @@ bool applySunAngles(SunAngles choice, const Evaluator* evaluator, std::vector<Li
       return false;
     case SunAngles::Fit:
       if (!evaluator || !(evaluator->effects() & kShadow)) return false;
-      fitSunAngles(*evaluator, lights);
+      fitSunAngles(*evaluator, lights, refitReceivers);
       return true;
   }
   return false;

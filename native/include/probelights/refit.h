@@ -11,7 +11,8 @@ namespace probelights {
 
 // Irradiance-exact intensities: keeps each light's direction and re-solves its non-negative colour, per
 // channel, by non-negative least squares (Lawson & Hanson 1974) so the lights' diffuse irradiance matches the
-// probe's on the evaluator's 1024 fit normals. Returns the refit lights; `energyShift` (if given) gets
+// probe's on the evaluator's fit receivers: its 1024 fit normals and, with shadows, its 1024 refit ground
+// points (Evaluator::fitReceivers(true)). Returns the refit lights; `energyShift` (if given) gets
 // sum(new) / sum(old) - 1. At most kMaxRefitLights lights (the active-set solve grows with the cube of the
 // count; beyond it the plain lights are already within a fraction of a percent).
 inline constexpr std::size_t kMaxRefitLights = 256;

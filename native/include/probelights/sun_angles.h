@@ -23,10 +23,13 @@ SunAngles parseSunAngles(const std::string& name);  // throws Error naming the c
 // brightest first, two rounds; each light tries 0 and its spread angle times 2^(k/2), k = -6..4 (up to the
 // profile's widest angle), then a quarter-octave either side of the best. Minimizes shadow error^2 + diffuse
 // error^2 with colours and directions fixed. Needs an evaluator with kShadow (throws Error otherwise).
-void fitSunAngles(const Evaluator& evaluator, std::vector<Light>& lights);
+// refitReceivers: fitted on the refit's 1024 ground points instead (Evaluator::fitReceivers), as the refit's
+// own angle fits are.
+void fitSunAngles(const Evaluator& evaluator, std::vector<Light>& lights, bool refitReceivers = false);
 
 // The angles `choice` asks for: points sets 0, spread leaves them as made, fit calls fitSunAngles when the
 // evaluator (may be null) has shadows. Returns whether the angles were fitted.
-bool applySunAngles(SunAngles choice, const Evaluator* evaluator, std::vector<Light>& lights);
+bool applySunAngles(SunAngles choice, const Evaluator* evaluator, std::vector<Light>& lights,
+                    bool refitReceivers = false);
 
 }  // namespace probelights
