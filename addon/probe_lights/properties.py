@@ -50,7 +50,7 @@ def bake_settings():
                               description="Place each light at its region's brightest light and refit the lights' "
                                           "colours and directions so their diffuse light and shadows match the "
                                           "world's (measured on 15 probes in Cycles 4.5: at 16 suns the rendered "
-                                          "shadow difference falls from 0.9-3.8 % to 0.3-2.4 %; adds about 0.3-0.5 s "
+                                          "shadow difference falls from 0.9-3.8 % to 0.3-2.2 %; adds about 0.3 s "
                                           "at 4K)"),
     }
 
