@@ -110,7 +110,40 @@ double coneIrradiance(const Vec3& axis, double angle, const Vec3& normal, const 
   return coneIrradiance(makeCone(axis, angle, profile), normal, occluder);
 }
 
-double coneIrradiance(const Cone& cone, const Vec3& normal, const Cap* occluder) {
+namespace {
+
+// n . (integral of w dw over the intersection of caps A and B), by the boundary form of the vector
+// irradiance: integral over a region of w dw = 1/2 of the loop integral of w x dw around its edge (Arvo
+// 1995). Along a circle of angular radius r about c, from phi0 to phi1 (frame e1, e2 about c), that is
+// 1/2 [sin^2 r (phi1 - phi0) c - cos r sin r ((sin phi1 - sin phi0) e1 - (cos phi1 - cos phi0) e2)]; the
+// intersection's edge is the arc of each circle inside the other cap, symmetric about the plane of the two
+// axes, so each arc of half-width psi gives sin^2 r psi c - cos r sin r sin psi u (u: towards the other
+// axis, across c).
+double capIntersectionMoment(const Vec3& n, const Vec3& a, double alpha, double cosA, double sinA,
+                             const Cap& b) {
+  const double ct = std::clamp(dot(a, b.axis), -1.0, 1.0);
+  const Vec3 across = b.axis - ct * a;  // b's part across a: length sin theta (accurate for small theta)
+  const double st = across.length();
+  // Apart: theta >= alpha + g; one inside the other: theta <= |alpha - g|. By the cosines (no atan2).
+  if (!(b.radius > 0) || (alpha + b.radius < kPi && ct <= cosA * b.cosRadius - sinA * b.sinRadius)) return 0;
+  if (ct >= cosA * b.cosRadius + sinA * b.sinRadius)
+    return alpha >= b.radius ? kPi * b.sinRadius * b.sinRadius * dot(n, b.axis)       // b inside a
+                             : kPi * sinA * sinA * dot(n, a);                         // a inside b
+  if (!(st > 0)) return kPi * (sinA * sinA - b.sinRadius * b.sinRadius) * dot(n, a);  // opposite: a band
+  // The arcs' half-widths: the points of a's circle inside b satisfy cos(phi - phiB) > (cos g - cos a cos
+  // theta) / (sin a sin theta), and the other way round.
+  const double cA = std::clamp((b.cosRadius - cosA * ct) / (sinA * st), -1.0, 1.0);
+  const double cB = std::clamp((cosA - b.cosRadius * ct) / (b.sinRadius * st), -1.0, 1.0);
+  const double psiA = std::acos(cA), psiB = std::acos(cB);
+  const Vec3 towardsB = (1.0 / st) * across, towardsA = (1.0 / st) * (a - ct * b.axis);
+  return sinA * sinA * psiA * dot(n, a) - cosA * sinA * std::sqrt(1 - cA * cA) * dot(n, towardsB) +
+         b.sinRadius * b.sinRadius * psiB * dot(n, b.axis) -
+         b.cosRadius * b.sinRadius * std::sqrt(1 - cB * cB) * dot(n, towardsA);
+}
+
+// coneIrradiance; `rings`: the ring quadrature for every cone an occluder overlaps (tests hold the closed
+// forms against it).
+double irradiance(const Cone& cone, const Vec3& normal, const Cap* occluder, bool rings) {
   const Vec3& axis = cone.axis;
   const double a = cone.half;
   const double nl = dot(normal, axis);
@@ -119,27 +152,34 @@ double coneIrradiance(const Cone& cone, const Vec3& normal, const Cap* occluder)
     if (occluder && dot(axis, occluder->axis) > occluder->cosRadius) return 0;
     return nl;
   }
-  // Whether the occluder overlaps the cone: the angle between their axes below a + g, i.e. its cosine above
-  // cos(a + g) (always when a + g >= pi).
-  double cl = 0;
-  bool occluded = false;
-  if (occluder) {
-    cl = dot(occluder->axis, axis);
-    occluded = a + occluder->radius >= kPi ||
-               cl > cone.cosHalf * occluder->cosRadius - cone.sinHalf * occluder->sinRadius;
-  }
-  if (!occluded) {  // the whole cone in front (pi sin^2 a (n . axis), normalized: n . axis) or behind
+  const double cl = occluder ? dot(occluder->axis, axis) : 0.0;
+  const bool occluded = occluder && overlaps(cone, *occluder);
+  if (!occluded || (cone.profile == SunProfile::Cone && !rings)) {
+    // The whole cone in front (pi sin^2 a (n . axis), normalized: n . axis) or behind, or cut by the horizon;
+    // an occluder (in front of the surface) takes away the integral of n . w over its intersection with the
+    // cone, in closed form too.
+    double lit = 0;
     const double sinN = std::sqrt(std::max(0.0, 1 - nl * nl));
-    if (nl * cone.cosHalf - sinN * cone.sinHalf >= 0) return nl;  // cos(thetaN + a) >= 0
-    if (nl * cone.cosHalf + sinN * cone.sinHalf <= 0) return 0;   // cos(thetaN - a) <= 0
-    if (cone.profile == SunProfile::Cone && sinN > 0) {
+    if (nl * cone.cosHalf - sinN * cone.sinHalf >= 0) {
+      lit = nl;  // cos(thetaN + a) >= 0
+    } else if (nl * cone.cosHalf + sinN * cone.sinHalf <= 0) {
+      return 0;  // cos(thetaN - a) <= 0: nothing in front, so no occluder either
+    } else if (cone.profile == SunProfile::Cone && sinN > 0) {
       // A uniform cap cut by the horizon, in closed form (Snyder 1996, as in Lagarde & de Rousiers 2014,
       // "Moving Frostbite to PBR", sphere lights): x = cot a, y = -x cot thetaN,
       // z = sin thetaN sqrt(1 - y^2), E = (cos thetaN acos(y) - x z) sin^2 a + atan(z / x), over
       // pi sin^2 a. Tested against the quadrature.
       const double s2 = cone.sinHalf * cone.sinHalf, x = cone.cosHalf / cone.sinHalf;
       const double y = std::clamp(-x * nl / sinN, -1.0, 1.0), z = sinN * std::sqrt(1 - y * y);
-      return ((nl * std::acos(y) - x * z) * s2 + std::atan2(z, x)) / (kPi * s2);
+      lit = ((nl * std::acos(y) - x * z) * s2 + std::atan2(z, x)) / (kPi * s2);
+    } else {
+      lit = -1;  // the disc cut by the horizon: by rings below
+    }
+    if (lit >= 0) {
+      if (!occluded) return lit;
+      const double hidden = capIntersectionMoment(normal, axis, a, cone.cosHalf, cone.sinHalf, *occluder) /
+                            (kPi * cone.sinHalf * cone.sinHalf);
+      return std::max(0.0, lit - hidden);
     }
   }
   const double n1 = dot(normal, cone.e1), n2 = dot(normal, cone.e2), bn = std::sqrt(n1 * n1 + n2 * n2);
@@ -193,6 +233,22 @@ double coneIrradiance(const Cone& cone, const Vec3& normal, const Cap* occluder)
   for (int i = 0; i + 1 < count; ++i)
     if (cuts[i + 1] > cuts[i]) sum += smoothPiece(cuts[i], cuts[i + 1], ring);
   return sum / cone.facing;
+}
+
+}  // namespace
+
+bool overlaps(const Cone& cone, const Cap& cap) {
+  // The angle between their axes below a + g, i.e. its cosine above cos(a + g) (always when a + g >= pi).
+  return cone.half + cap.radius >= kPi ||
+         dot(cap.axis, cone.axis) > cone.cosHalf * cap.cosRadius - cone.sinHalf * cap.sinRadius;
+}
+
+double coneIrradiance(const Cone& cone, const Vec3& normal, const Cap* occluder) {
+  return irradiance(cone, normal, occluder, false);
+}
+
+double coneIrradianceByRings(const Cone& cone, const Vec3& normal, const Cap* occluder) {
+  return irradiance(cone, normal, occluder, true);
 }
 
 double coneGlossy(const Vec3& axis, double angle, const Vec3& reflected, int exponent, SunProfile profile) {

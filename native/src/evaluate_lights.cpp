@@ -50,9 +50,13 @@ void Evaluator::kernels(const Light& l, const std::vector<Receiver>& receivers, 
     return;
   }
   const Cone cone = makeCone(l.direction, l.angle, profile_);
+  const Vec3 up{0, 0, 1};
+  const double open = coneIrradiance(cone, up);  // a ground point the sphere hides none of the cone from
   for (std::size_t k = 0; k < receivers.size(); ++k) {
     const Receiver& r = receivers[k];
-    out[k] = scale * (r.ground ? coneIrradiance(cone, {0, 0, 1}, &r.sphere) : coneIrradiance(cone, r.at));
+    out[k] = scale * (!r.ground                  ? coneIrradiance(cone, r.at)
+                      : overlaps(cone, r.sphere) ? coneIrradiance(cone, up, &r.sphere)
+                                                 : open);
   }
 }
 

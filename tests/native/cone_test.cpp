@@ -83,11 +83,46 @@ TEST(Cone, TheHorizonClosedFormEqualsTheQuadrature) {
     const Vec3 n = unit(u(rng), u(rng), u(rng)), l = unit(u(rng), u(rng), u(rng));
     const double full = angle(rng);
     const Cap speck = makeCap(l, 1e-12);
-    const double closed = coneIrradiance(l, full, n), quadrature = coneIrradiance(l, full, n, &speck);
+    const double closed = coneIrradiance(l, full, n),
+                 quadrature = coneIrradianceByRings(makeCone(l, full), n, &speck);
     EXPECT_NEAR(closed, quadrature, 1e-6) << "case " << k;
     if (closed > 1e-9 && std::abs(closed - dot(n, l)) > 1e-9) ++cut;
   }
   EXPECT_GE(cut, 40);  // the cases cross the horizon
+}
+
+TEST(Cone, TheOcclusionClosedFormEqualsTheQuadrature) {
+  // The uniform cone less the occluder's part in closed form (the two caps' intersection by its edge) against
+  // the ring quadrature: ground points under the sphere, and made-up caps in front of the surface of every
+  // size, overlapping partly, one inside the other, and tiny cones.
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> u(-1, 1), unit01(0, 1);
+  int partly = 0, inside = 0, covered = 0;
+  for (int k = 0; k < 3000; ++k) {
+    const Vec3 n{0, 0, 1};
+    const Vec3 l = unit(u(rng), u(rng), 1.2 * u(rng) + 0.2);
+    const double full = k % 10 == 0 ? 1e-4 * unit01(rng) : 3.1 * unit01(rng) * unit01(rng);
+    Cap cap;
+    if (k % 2 == 0) {
+      cap = sphereCap({2.5 * u(rng), 2.5 * u(rng), 0}, {0, 0, 1}, 1.0);
+    } else {  // a cap wholly above the horizon
+      const Vec3 c = unit(u(rng), u(rng), unit01(rng) + 0.05);
+      cap = makeCap(c, std::min(std::asin(c.z), 1.5) * unit01(rng));
+    }
+    const Cone cone = makeCone(l, full);
+    const double closed = coneIrradiance(cone, n, &cap), rings = coneIrradianceByRings(cone, n, &cap);
+    EXPECT_NEAR(closed, rings, 1e-6) << "case " << k << " angle " << full;
+    const double open = coneIrradiance(cone, n), theta = std::acos(std::clamp(dot(l, cap.axis), -1.0, 1.0));
+    if (closed < open - 1e-6 && closed > 1e-6) ++partly;
+    if (theta + cap.radius < 0.5 * full && closed > 1e-6) ++inside;
+    if (theta + 0.5 * full < cap.radius && open > 0) {
+      ++covered;
+      EXPECT_NEAR(closed, 0.0, 1e-12);
+    }
+  }
+  EXPECT_GE(partly, 300);
+  EXPECT_GE(inside, 30);
+  EXPECT_GE(covered, 30);
 }
 
 TEST(Cone, Blender3sDiscMatchesBruteForce) {
