@@ -129,15 +129,11 @@ class Evaluator {
 
  private:
   Evaluator(const Probe& probe, const MomentTable* grid, Effects effects, EvaluatorOptions options);
-  // A sample of the truth: its light (signed: Probe::light) from the luminance-weighted mean direction, or
-  // from the middle of its pixels (u, v in [0, 1]) when it has no positive luminance (only negative samples).
-  void addSample(const Projection& projection, const Rgb& rgb, const Vec3& moment, double u, double v);
 
   Effects effects_;
   SunProfile profile_ = SunProfile::Cone;
   std::vector<Vec3> directions_;  // probe samples: unit directions
   std::vector<Rgb> radiance_;     // and their L dOmega
-  std::vector<Rgb> shadowTruthAt(const std::vector<Vec3>& points) const;
 
   std::vector<Vec3> normals_, points_, fitNormals_, fitPoints_, refitPoints_;
   std::vector<Cap> pointCaps_;  // the sphere's cap from each ground point
