@@ -1,7 +1,7 @@
 // Parallel loops: OpenImageIO's thread pool where the library links OpenImageIO (CLI, tests, the full Python
-// module), or a few std::threads in the portable build that the Blender add-on loads (it must link nothing
-// but libc: see native/CMakeLists.txt). Every caller computes item i from i alone, so results are
-// bit-identical whichever backend runs and however many threads it has.
+// module), or our own pool of std::threads (thread_pool.h) in the portable build that the Blender add-on
+// loads (it must link nothing but libc: see native/CMakeLists.txt). Every caller computes item i from i
+// alone, so results are bit-identical whichever backend runs and however many threads it has.
 #pragma once
 
 #include <algorithm>
@@ -14,10 +14,7 @@
 #if PROBELIGHTS_PARALLEL_OIIO
 #include <OpenImageIO/parallel.h>
 #else
-#include <algorithm>
-#include <atomic>
-#include <thread>
-#include <vector>
+#include "thread_pool.h"
 #endif
 
 namespace probelights {
@@ -35,23 +32,13 @@ void parallelFor(std::int64_t n, Task&& task) {
   OIIO::parallel_for(std::int64_t{0}, n, OIIO::function_view<void(std::int64_t)>(task),
                      OIIO::paropt(0, OIIO::paropt::SplitDir::Y, 1));
 #else
-  // Threads take the next item from a shared counter (items differ in cost). A thread costs ~20 us to start,
-  // small beside the passes over an image this runs; tiny loops stay on the caller's thread.
-  const auto hardware = static_cast<std::int64_t>(std::max(1u, std::thread::hardware_concurrency()));
-  const std::int64_t threads = std::min(hardware, n);
-  if (threads <= 1) {
-    for (std::int64_t i = 0; i < n; ++i) task(i);
+  // The pool's threads take the next item from a shared counter (items differ in cost); tiny loops, and
+  // loops inside the pool's own loops, stay on the caller's thread.
+  auto call = [&task](std::int64_t i) { task(i); };
+  if (n > 1 && runOnPool(
+                   n, [](void* c, std::int64_t i) { (*static_cast<decltype(call)*>(c))(i); }, &call))
     return;
-  }
-  std::atomic<std::int64_t> next{0};
-  auto work = [&] {
-    for (std::int64_t i; (i = next.fetch_add(1, std::memory_order_relaxed)) < n;) task(i);
-  };
-  std::vector<std::thread> pool;
-  pool.reserve(static_cast<std::size_t>(threads - 1));
-  for (std::int64_t t = 1; t < threads; ++t) pool.emplace_back(work);
-  work();
-  for (auto& thread : pool) thread.join();
+  for (std::int64_t i = 0; i < n; ++i) task(i);
 #endif
 }
 

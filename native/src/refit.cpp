@@ -1,7 +1,9 @@
 #include "probelights/refit.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <utility>
 
 #include "parallel.h"
 #include "probelights/error.h"
@@ -25,7 +27,7 @@ Vec3 rotateAbout(const Vec3& d, const Vec3& axis, double angle) {  // Rodrigues'
 void moveDirections(const Evaluator& evaluator, const std::vector<Receiver>& receivers,
                     std::vector<Light>& lights) {
   const std::size_t m = receivers.size();
-  std::vector<double> target(m), sum(m, 0.0), term(m), trial(m), candidate(m);
+  std::vector<double> target(m), sum(m, 0.0), term(m), trial(m);
   for (std::size_t i = 0; i < m; ++i) target[i] = luminance(receivers[i].truth);
   auto contribution = [&](const Light& l, std::vector<double>& out) {
     evaluator.kernels(l, receivers, luminance(l.rgb), out);
@@ -55,15 +57,31 @@ void moveDirections(const Evaluator& evaluator, const std::vector<Receiver>& rec
       const Vec3 t1 = std::abs(d.z) < 0.9 ? Vec3{-d.y, d.x, 0} : Vec3{0, -d.z, d.y};
       const Vec3 t2{d.y * t1.z - d.z * t1.y, d.z * t1.x - d.x * t1.z, d.x * t1.y - d.y * t1.x};
       contribution(l, term);
-      for (const Vec3& axis : {t1, t2})
-        for (double sign : {1.0, -1.0}) {
+      // The four trial moves in order, each from the direction the moves before it left: the ones not yet
+      // tried are computed together (in parallel) from the current direction, again after a move is taken
+      // (one batch and a quarter a light on average), so the moves are the same as one by one.
+      const std::array<std::pair<Vec3, double>, 4> moves{{{t1, step}, {t1, -step}, {t2, step}, {t2, -step}}};
+      std::array<std::vector<double>, 4> candidates;
+      std::array<Vec3, 4> directions;
+      for (std::size_t first = 0; first < moves.size();) {
+        parallelFor(static_cast<std::int64_t>(moves.size() - first), [&](std::int64_t c) {
+          const auto& [axis, degrees] = moves[first + c];
           Light moved = l;
-          moved.direction = rotateAbout(l.direction, axis, sign * step * kPi / 180);
-          contribution(moved, candidate);
-          for (std::size_t i = 0; i < m; ++i) trial[i] = sum[i] - term[i] + candidate[i];
+          moved.direction = directions[first + c] = rotateAbout(l.direction, axis, degrees * kPi / 180);
+          contribution(moved, candidates[first + c]);
+        });
+        std::size_t next = moves.size();
+        for (std::size_t c = first; c < moves.size(); ++c) {
+          for (std::size_t i = 0; i < m; ++i) trial[i] = sum[i] - term[i] + candidates[c][i];
           const double e = error(trial);
-          if (e < current) current = e, sum.swap(trial), term.swap(candidate), l.direction = moved.direction;
+          if (e < current) {
+            current = e, sum.swap(trial), term.swap(candidates[c]), l.direction = directions[c];
+            next = c + 1;
+            break;
+          }
         }
+        first = next;
+      }
     }
 }
 
