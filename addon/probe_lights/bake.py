@@ -80,13 +80,18 @@ def bake_world(context, settings, progress=lambda fraction: None, rendered=None,
     progress(0.5)
     # The errors are estimated on the probe grouped to 512 pixels wide: ~50 ms at any probe size.
     max_error = settings.max_error / 100.0 if settings.count_mode == "TOLERANCE" else 0.0
+    # The refit takes at most native.max_refit_lights() lights unless a tolerance picks the count (it stops there).
+    refit = settings.refit and (max_error > 0 or settings.count <= native.max_refit_lights())
+    if settings.refit and not refit:
+        warnings.append("Refit takes at most %d lights: %d lights baked without it" % (native.max_refit_lights(),
+                                                                                      settings.count))
     try:
         # With the refit, lights start at their regions' energy^2 centroids (towards the brightest light): with
         # directions and colours refit, shadows came out closer on 15 probes of 15 at 16 suns (README).
         baked = native.bake(pixels, projection=projection, method=settings.method, lights=settings.count,
-                            centroid="energy2" if settings.refit else "energy",
+                            centroid="energy2" if refit else "energy",
                             resolution=settings.resolution, evaluate=True, effects="diffuse,shadow",
-                            evaluator_width=512, refit=settings.refit, move_directions=settings.refit,
+                            evaluator_width=512, refit=refit, move_directions=refit,
                             max_error=max_error, nonfinite=settings.non_finite,
                             sun_angles=NATIVE_SUN_ANGLES[settings.shadows] if settings.light_type == "SUN" else "points",
                             sun_profile=sun_profile(bpy.app.version))
@@ -108,6 +113,12 @@ def bake_world(context, settings, progress=lambda fraction: None, rendered=None,
     context.view_layer.update()  # drivers and the rig put the lamps where they shine from
     lamps_ms = 1000 * (time.perf_counter() - bake_done)
     notes = [n for n in baked["notes"] if not _native_warning(n)]
+    total = float(np.dot(baked["total_rgb"], LUM))
+    captured = float(np.sum(baked["lights"]["rgb"] @ LUM))
+    if refit and total > 0:
+        notes.append("Refit: the lamps' strengths sum to %.1f %% of the world's light, fitted to its diffuse light "
+                     "and shadows (a wide sun gives more light than its strength, which a facing surface gets)"
+                     % (100.0 * captured / total))
     warnings += [n for n in baked["notes"] if _native_warning(n)]
     offer = cycles_settings.advice(scene, len(lights))
     if offer:
@@ -123,8 +134,6 @@ def bake_world(context, settings, progress=lambda fraction: None, rendered=None,
         advice = render_cost.count_note(len(lights), bpy.app.version)
         if advice:
             warnings.append(advice)
-    total = float(np.dot(baked["total_rgb"], LUM))
-    captured = float(np.sum(baked["lights"]["rgb"] @ LUM))
     errors = baked["evaluation"] or {}
     return {"count": len(lights), "energy": 100.0 * captured / total if total > 0 else 0.0,
             "ms": 1000.0 * (time.perf_counter() - start),

@@ -46,12 +46,12 @@ def bake_settings():
         "max_error": FloatProperty(name="Max error", default=2.0, min=0.05, max=50.0, subtype="PERCENTAGE",
                                    description="Largest estimated diffuse/shadow error (relative RMS) to accept"),
         "non_finite": EnumProperty(name="NaN/Inf pixels", items=NON_FINITE, default="error"),
-        "refit": BoolProperty(name="Refit", default=False,
+        "refit": BoolProperty(name="Refit", default=True,
                               description="Place each light at its region's brightest light and refit the lights' "
                                           "colours and directions so their diffuse light and shadows match the "
                                           "world's (measured on 15 probes in Cycles 4.5: at 16 suns the rendered "
-                                          "shadow difference falls from 0.9-3.8 % to 0.3-2.2 %; adds about 0.3 s "
-                                          "at 4K)"),
+                                          "shadow difference falls from 0.9-3.8 % to 0.3-2.2 %; 64 suns at 4K: "
+                                          "about 0.4 s a click in Blender 4.5, 0.2 s without)"),
     }
 
 

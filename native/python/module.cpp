@@ -18,6 +18,7 @@
 #include "probelights/evaluate.h"
 #include "probelights/memory.h"
 #include "probelights/probe.h"
+#include "probelights/refit.h"
 #include "probelights/result_layout.h"
 #include "probelights/sh_sampler.h"
 #include "probelights/spherical_harmonics.h"
@@ -389,6 +390,7 @@ PYBIND11_MODULE(_probelights, m) {
       "probes "
       "at full resolution).");
   m.attr("__version__") = PROBELIGHTS_VERSION;
+  m.attr("max_refit_lights") = kMaxRefitLights;  // the most lights a bake with refit=True takes
   // "full": reads files with OpenImageIO (bake_file); "pixels": the portable build inside the Blender add-on,
   // which links nothing but the C library and takes pixels only.
   m.attr("build") = PROBELIGHTS_MODULE_IO ? "full" : "pixels";

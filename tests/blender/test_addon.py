@@ -63,7 +63,7 @@ def test_real_probes_bake_with_their_energy():
         harness.empty_scene()
         image = bpy.data.images.load(path)
         harness.env_world(image, strength=1.5)
-        lights = bake(count=16)
+        lights = bake(count=16, refit=False)  # the regions' sums; the refit moves them (its note says how much)
         assert len(lights) == 16, (path, len(lights))
         # Reference: the same pixels Blender holds, through the add-on's own module.
         pixels = np.empty(image.size[0] * image.size[1] * image.channels, np.float32)
@@ -136,6 +136,13 @@ def test_estimated_errors_and_count_by_tolerance():
         len(lights), settings.last_diffuse_error, settings.last_shadow_error))
     refit = bake(count=16, refit=True)
     assert len(refit) == 16
+    # Refit is the default and says where the strengths went; a count past what it takes bakes without it, saying
+    # so.
+    assert bpy.context.scene.probe_lights.bl_rna.properties["refit"].default is True
+    bake(count=16)
+    assert "Refit: the lamps' strengths sum to 9" in settings.last_notes, settings.last_notes
+    many = bake(count=300)
+    assert len(many) == 300 and "Refit takes at most 256 lights" in settings.last_warnings, settings.last_warnings
 
 
 def test_more_suns_than_pay_off_are_reported_with_this_versions_measurements():
@@ -260,7 +267,7 @@ def test_plain_colour_world_and_its_restore():
     else:
         world.node_tree.nodes["Background"].inputs["Color"].default_value = colour + (1.0,)
         before = harness.tree_snapshot(world)
-    lights = bake(count=4)
+    lights = bake(count=4, refit=False)
     total = sum(irradiance(o) for o in lights)
     assert np.allclose(total, 4 * math.pi * np.array(colour), rtol=2e-3), total
     assert world_mix.has_mix(world)
@@ -341,9 +348,9 @@ def test_bad_worlds_are_one_line_reports():
 def test_point_lights_give_the_same_irradiance_at_the_origin():
     harness.empty_scene()
     bright_spot_world((30, 20))
-    suns = bake(count=8)
+    suns = bake(count=8, refit=False)
     sun_e = sorted(float(irradiance(o) @ LUM) for o in suns)
-    points = bake(count=8, light_type="POINT", distance=7.0)
+    points = bake(count=8, light_type="POINT", distance=7.0, refit=False)
     for o in points:
         assert abs(o.location.length - 7.0) < 1e-4
     # Point power P at distance D gives P / (4 pi D^2) (measured: tests/blender/test_render.py checks it in Cycles).
