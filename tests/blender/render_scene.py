@@ -89,6 +89,34 @@ def ground_under_sphere(samples, size=16):
     c.sample_clamp_direct = c.sample_clamp_indirect = 0.0
 
 
+def ground_truth(image, size=16, sub=2, negatives_as_zero=False):
+    """What ground_under_sphere renders, computed from a lat-long image's own pixels (each sub x sub points,
+    negatives kept unless negatives_as_zero): the luminance irradiance / pi at each pixel's ground point, as a
+    size x size x 3 array of grey pixels (rows top to bottom, like render())."""
+    w, h = image.size
+    px = np.empty(w * h * 4, np.float32)
+    image.pixels.foreach_get(px)
+    lum = px.reshape(h, w, 4)[::-1, :, :3].astype(np.float64) @ LUM
+    if negatives_as_zero:
+        lum = np.maximum(lum, 0.0)
+    u = (np.arange(w * sub) + 0.5) / (w * sub)
+    v = (np.arange(h * sub) + 0.5) / (h * sub)
+    phi, el = 2 * math.pi * (0.5 - u)[None, :], (math.pi / 2 - math.pi * v)[:, None]
+    d = np.stack([np.cos(el) * np.cos(phi), np.cos(el) * np.sin(phi), np.sin(el) * np.ones_like(phi)], -1)
+    d = d.reshape(-1, 3)
+    omega = (np.cos(el) * (2 * math.pi / (w * sub)) * (math.pi / (h * sub)) * np.ones_like(phi)).ravel()
+    radiance = np.repeat(np.repeat(lum, sub, 0), sub, 1).ravel()
+    up = d[:, 2] > 0
+    d, weight = d[up], (omega * radiance)[up] * d[up, 2]
+    out = np.empty((size, size))
+    for r in range(size):
+        for c in range(size):
+            o = np.array([-2.5 + 5.0 * (c + 0.5) / size, 2.5 - 5.0 * (r + 0.5) / size, -1.0])  # point - centre
+            b = d @ o
+            out[r, c] = np.sum(weight[~((b < 0) & (b * b - (o @ o - 1) > 0))]) / math.pi
+    return np.repeat(out[..., None], 3, axis=2)  # grey: its luminance is the value (LUM sums to 1)
+
+
 def relative_rms(truth, got):
     """rms(got - truth) / rms(truth) of the pixels' luminance: the evaluator's error measure."""
     a, b = truth[..., :3] @ LUM, got[..., :3] @ LUM

@@ -41,14 +41,23 @@ def noisy_pair():
     return first, render_scene.relative_rms(first, second) / math.sqrt(2)
 
 
-def estimate_against_render(probe, counts=(8, 16, 64)):
+def estimate_against_render(probe, counts=(8, 16, 64), world_from_pixels=False):
+    """world_from_pixels: compare the lamps' render with the probe's truth computed from its pixels
+    (render_scene.ground_truth) instead of with the world's render."""
     harness.empty_scene()
-    world = harness.env_world(bpy.data.images.load(probe))
+    image = bpy.data.images.load(probe)
+    world = harness.env_world(image)
     # The truth is the probe's pixels: the world shows them unfiltered (Blender's default, Linear, blurs each by
     # a pixel; measured on sunrise at 64 suns, 0.65 % rendered against 0.59 % Closest, the estimate 0.33 %).
     world.node_tree.nodes["Environment Texture"].interpolation = "Closest"
     render_scene.ground_under_sphere(SAMPLES)
     world, world_noise = noisy_pair()
+    if world_from_pixels:
+        truth = render_scene.ground_truth(image)
+        print("  %s: the world's render is %.2f %% from the probe's truth (noise %.2f %%); the lamps are compared "
+              "with the truth" % (os.path.basename(probe), 100 * render_scene.relative_rms(truth, world),
+                                  100 * world_noise))
+        world, world_noise = truth, 0.0
     settings = bpy.context.scene.probe_lights
     worst = 0.0
     for n in counts:
@@ -86,10 +95,13 @@ def test_the_estimated_shadow_error_is_the_rendered_one():
 def test_negative_samples_are_light_the_lamps_and_the_estimate_keep():
     """pmndrs_esplanade_dwab (../shared): DWAB's ringing leaves 5054 negative samples beside its sun, -6.5 % of its
     light, which Cycles renders. When the lights and the estimate dropped them, 16 suns rendered 10.2 % from the
-    world-lit render against an estimate of 2.5 %; keeping them, the two agree (4.5.15: 2.59 % / 2.70 %)."""
+    world-lit render against an estimate of 2.5 %; keeping them, the two agree (4.5.15: 2.59 % / 2.70 %).
+    Cycles 3.x renders a world's negative pixels only in part (3.4.1: its world render 1.75 % from the probe's
+    truth at the ground points, 4.5's 0.58 %, its noise; scripts/render_vs_model.py), so there the lamps' render is
+    compared with the truth computed from the probe's pixels (3.4.1, 16 refit suns: 0.87 %, estimated 0.80 %)."""
     probe = harness.shared_probe(a, "pmndrs_esplanade_dwab.exr")
     if probe:
-        estimate_against_render(probe, counts=(16,))
+        estimate_against_render(probe, counts=(16,), world_from_pixels=bpy.app.version < (4, 0, 0))
 
 
 harness.run([test_the_estimated_shadow_error_is_the_rendered_one,
