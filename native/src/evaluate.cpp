@@ -377,6 +377,20 @@ Evaluator::Evaluator(const Probe& probe, const MomentTable* grid, Effects effect
       });
 }
 
+std::vector<Vec3> Evaluator::brightestDirections(std::size_t count) const {
+  std::vector<std::size_t> order(radiance_.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  count = std::min(count, order.size());
+  auto brighter = [&](std::size_t a, std::size_t b) {
+    const double la = luminance(radiance_[a]), lb = luminance(radiance_[b]);
+    return la != lb ? la > lb : a < b;
+  };
+  std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(count), order.end(), brighter);
+  std::vector<Vec3> out;
+  for (std::size_t i = 0; i < count; ++i) out.push_back(directions_[order[i]]);
+  return out;
+}
+
 std::vector<Receiver> Evaluator::fitReceivers(bool refit) const {
   std::vector<Receiver> out;
   auto add = [&](const std::vector<Vec3>& at, const std::vector<Rgb>& truth, bool ground) {

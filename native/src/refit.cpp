@@ -14,6 +14,7 @@ namespace probelights {
 namespace {
 
 constexpr std::size_t kMaxMoved = 64;
+constexpr std::size_t kPlaceAtBrightest = 256;
 
 Vec3 rotateAbout(const Vec3& d, const Vec3& axis, double angle) {  // Rodrigues' rotation
   const Vec3 k = (1.0 / axis.length()) * axis;
@@ -87,6 +88,49 @@ void moveDirections(const Evaluator& evaluator, const std::vector<Receiver>& rec
 
 }  // namespace
 
+bool placeDarkLights(const Evaluator& evaluator, const std::vector<Receiver>& receivers,
+                     std::vector<Light>& lights) {
+  std::vector<std::size_t> dark;
+  for (std::size_t j = 0; j < lights.size(); ++j)
+    if (!(luminance(lights[j].rgb) > 0)) dark.push_back(j);
+  if (dark.empty()) return false;
+  const std::size_t m = receivers.size();
+  std::vector<double> residual(m), term;
+  for (std::size_t i = 0; i < m; ++i) residual[i] = luminance(receivers[i].truth);
+  for (const Light& l : lights) {
+    evaluator.kernels(l, receivers, luminance(l.rgb), term);
+    for (std::size_t i = 0; i < m; ++i) residual[i] -= term[i];
+  }
+  std::vector<Vec3> candidates = evaluator.brightestDirections(kPlaceAtBrightest);
+  candidates.insert(candidates.end(), evaluator.normals().begin(), evaluator.normals().end());
+  std::vector<std::vector<double>> columns(candidates.size());
+  parallelFor(static_cast<std::int64_t>(candidates.size()), [&](std::int64_t c) {
+    Light point;
+    point.direction = candidates[c];
+    evaluator.kernels(point, receivers, 1.0, columns[c]);
+  });
+  bool moved = false;
+  for (std::size_t j : dark) {
+    double best = 0, bestScale = 0;
+    std::size_t bestCandidate = candidates.size();
+    for (std::size_t c = 0; c < candidates.size(); ++c) {
+      double kr = 0, kk = 0;
+      for (std::size_t i = 0; i < m; ++i) {
+        kr += receivers[i].weight * columns[c][i] * residual[i];
+        kk += receivers[i].weight * columns[c][i] * columns[c][i];
+      }
+      if (kr > 0 && kk > 0 && kr * kr / kk > best)
+        best = kr * kr / kk, bestCandidate = c, bestScale = kr / kk;
+    }
+    if (bestCandidate == candidates.size()) break;
+    lights[j].direction = candidates[bestCandidate];
+    lights[j].angle = 0;
+    for (std::size_t i = 0; i < m; ++i) residual[i] -= bestScale * columns[bestCandidate][i];
+    moved = true;
+  }
+  return moved;
+}
+
 std::vector<Light> refitIrradiance(const Evaluator& evaluator, const std::vector<Light>& lights,
                                    double* energyShift, bool moveDirs) {
   // Fitted on the evaluator's fit receivers (1024 normals, and 1024 ground points with shadows), not the
@@ -116,6 +160,7 @@ std::vector<Light> refitIrradiance(const Evaluator& evaluator, const std::vector
       for (int j = 0; j < n; ++j) ls[j].rgb[c] = x[c][j];
   };
   solveColours(out);
+  if (placeDarkLights(evaluator, receivers, out)) solveColours(out);
   for (int round = 0; moveDirs && round < 3; ++round) {
     moveDirections(evaluator, receivers, out);
     solveColours(out);

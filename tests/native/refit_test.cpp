@@ -44,6 +44,36 @@ TEST(Refit, MovingDirectionsLowersItFurther) {
   for (const Light& l : moved) EXPECT_NEAR(l.direction.length(), 1.0, 1e-9);
 }
 
+// A light the colour solve left dark is placed anew where the residual wants light: on a probe lit by two
+// small bright spots, with one light on the first, the dark one moves onto the second; then the refit's
+// colours give each spot its light.
+TEST(Refit, PlacesADarkLightWhereLightIsMissing) {
+  const int w = 128, h = 64;
+  auto spot = [](int x, int y, int sx, int sy) { return std::abs(x - sx) <= 1 && std::abs(y - sy) <= 1; };
+  auto t = testing::makeProbe(w, h, ProjectionKind::LatLong, [&](int x, int y) {
+    return spot(x, y, 32, 20) ? Rgb{50, 50, 50} : spot(x, y, 96, 26) ? Rgb{30, 30, 30} : Rgb{0, 0, 0};
+  });
+  const Probe& probe = t.probe;
+  const Vec3 a = *probe.projection().direction(32.5 / w, 20.5 / h);
+  const Vec3 b = *probe.projection().direction(96.5 / w, 26.5 / h);
+  Evaluator ev(probe, kDiffuse, {2048, true});
+  std::vector<Light> lights(2);
+  lights[0].direction = a, lights[0].rgb = t.probe.integral();  // all the light, on the first spot
+  lights[1].direction = {0, 0, -1};                             // dark
+  ASSERT_TRUE(placeDarkLights(ev, ev.fitReceivers(true), lights));
+  EXPECT_EQ((lights[0].direction - a).length(), 0.0);               // a lit light stays
+  EXPECT_GT(dot(lights[1].direction, b), std::cos(4 * kPi / 180));  // on the spot (a pixel is 2.8 degrees)
+  EXPECT_EQ(lights[1].angle, 0.0);
+  // Its colour solved: each spot gets its light (30 : 50 times the ratio of the spots' rows' solid angles),
+  // and the two lights give the probe's irradiance, where one light alone was far off.
+  const auto refit = refitIrradiance(ev, lights);
+  EXPECT_NEAR(luminance(refit[1].rgb) / luminance(refit[0].rgb),
+              30.0 / 50.0 * std::sqrt(1 - b.z * b.z) / std::sqrt(1 - a.z * a.z), 0.03);
+  EXPECT_LT(ev.evaluate(refit).diffuse, 0.04);  // 2.6 %: the spots are 3 x 3 pixels, the light is on one
+  EXPECT_GT(ev.evaluate(refitIrradiance(ev, {lights[0]})).diffuse, 0.1);
+  EXPECT_FALSE(placeDarkLights(ev, ev.fitReceivers(true), lights = refit));  // none dark: nothing moves
+}
+
 // The refit solves three colours a light, so it fits on its own 32 x 32 ground points (none of them the
 // 16 x 16 the error is measured on, nor the angle fit's 20 x 20).
 TEST(Refit, FitsOnItsOwnDenserGroundPoints) {

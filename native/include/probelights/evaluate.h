@@ -106,6 +106,9 @@ class Evaluator {
   // while the angle fit alone, one number a light, keeps the 400 (README: "Soft shadows").
   std::vector<Receiver> fitReceivers(bool refit = false) const;
   double kernel(const Light& light, const Receiver& r) const;
+  // The directions of the probe's `count` brightest samples (by luminance), brightest first: where a light
+  // the refit places anew may go (refit.cpp).
+  std::vector<Vec3> brightestDirections(std::size_t count) const;
   // The light's kernel at every receiver, times `scale` (its cone prepared once).
   void kernels(const Light& light, const std::vector<Receiver>& receivers, double scale,
                std::vector<double>& out) const;
