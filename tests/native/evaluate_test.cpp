@@ -77,6 +77,32 @@ TEST(Evaluator, GroundTruthMatchesABruteForceSum) {
   EXPECT_GT(worstCentres, 5 * worstSplit);  // 1.4e-1
 }
 
+// The irradiance truth visits only the sample bins a normal's horizon crosses (the others by their moments):
+// it must equal the sum over every pixel on the 256 normals and the refit's 1024, to rounding.
+TEST(Evaluator, IrradianceTruthEqualsTheSumOverEveryPixel) {
+  const int W = 256, H = 128;
+  auto t = testing::makeProbe(W, H, ProjectionKind::LatLong, [](int x, int y) {
+    return Rgb{0.1 + (x * 7 + y) % 13, (x / 9 + y / 5) % 2 == 0 ? 4.0 : 0.0, 1.0 + (x * y) % 7};
+  });
+  Evaluator ev(t.probe, kDiffuse, {2048, true});
+  const Projection& pr = t.probe.projection();
+  auto brute = [&](const Vec3& n) {
+    Rgb e{};
+    for (int y = 0; y < H; ++y)
+      for (int x = 0; x < W; ++x) {
+        const double w = std::max(0.0, dot(n, *pr.direction((x + 0.5) / W, (y + 0.5) / H)));
+        for (int k = 0; k < 3; ++k) e[k] += t.probe.radiance(x, y)[k] * pr.pixelSolidAngle(x, y) * w;
+      }
+    return e;
+  };
+  for (auto [normals, truth] :
+       {std::pair{&ev.normals(), &ev.diffuseTruth()}, {&ev.fitNormals(), &ev.fitTruth()}})
+    for (std::size_t i = 0; i < normals->size(); i += 7) {
+      const Rgb e = brute((*normals)[i]);
+      for (int k = 0; k < 3; ++k) EXPECT_NEAR((*truth)[i][k], e[k], 1e-11 * (1 + e[k])) << i;
+    }
+}
+
 TEST(Evaluator, OneLightPerPixelIsExactAndFewLightsAreNot) {  // exact where the truth is the pixels' centres
   auto t = testing::makeProbe(16, 8, ProjectionKind::LatLong, [](int x, int y) {
     return Rgb{1.0 + x, 0.5 + y, 2.0};
