@@ -23,19 +23,6 @@ import render_scene  # noqa: E402
 SIZE = 16
 
 
-def ground_points():
-    """The render's pixel centres, rows top to bottom (the camera looks down -Z, x right, y up)."""
-    return [np.array([-2.5 + 5.0 * (c + 0.5) / SIZE, 2.5 - 5.0 * (r + 0.5) / SIZE, 0.0])
-            for r in range(SIZE) for c in range(SIZE)]
-
-
-def hidden(d, p):
-    """Which unit directions d from ground point p the unit sphere at (0, 0, 1) hides."""
-    o = p - np.array([0, 0, 1.0])
-    b = d @ o
-    return (b < 0) & (b * b - (o @ o - 1) > 0)
-
-
 def sun_model(axis, angle, p, disc, n=200):
     """Irradiance at p from a sun of strength 1 (Blender's units) along `axis`, its sphere shadow included."""
     t1 = np.cross(axis, [0, 0, 1.0]) if abs(axis[2]) < 0.9 else np.cross(axis, [1.0, 0, 0])
@@ -55,7 +42,7 @@ def sun_model(axis, angle, p, disc, n=200):
         s = np.sqrt(1 - c * c)
         d = c[:, None] * axis + (s * np.cos(ph))[:, None] * t1 + (s * np.sin(ph))[:, None] * t2
         weight = np.full(len(d), 1.0 / len(d)) / np.mean(d @ axis)
-    return float(np.sum(weight * np.clip(d[:, 2], 0, None) * ~hidden(d, p)))
+    return float(np.sum(weight * np.clip(d[:, 2], 0, None) * ~render_scene.hidden_by_sphere(d, p)))
 
 
 def rms(got, truth):
@@ -83,7 +70,7 @@ for o in (o for o in bpy.context.scene.objects if o.type == "LIGHT"):
     axis = np.array(o.matrix_world.to_3x3() @ mathutils.Vector((0, 0, 1)))
     axis /= np.linalg.norm(axis)  # the lamps' rig scales them
     strength = float(np.array(o.data.color) @ render_scene.LUM) * o.data.energy
-    model += strength * np.array([sun_model(axis, o.data.angle, p, disc) for p in ground_points()])
+    model += strength * np.array([sun_model(axis, o.data.angle, p, disc) for p in render_scene.ground_points(SIZE)])
 print("lamps render vs their model %.2f %% (means %.4f / %.4f); estimate %.2f %%, lamps render vs world render "
       "%.2f %%, vs the truth %.2f %%" % (rms(lamps_render, model), lamps_render.mean(), model.mean(),
                                          bpy.context.scene.probe_lights.last_shadow_error,

@@ -89,6 +89,20 @@ def ground_under_sphere(samples, size=16):
     c.sample_clamp_direct = c.sample_clamp_indirect = 0.0
 
 
+def ground_points(size=16):
+    """The ground points ground_under_sphere's pixels look at, rows top to bottom (the camera looks down -Z, x
+    right, y up)."""
+    return [np.array([-2.5 + 5.0 * (c + 0.5) / size, 2.5 - 5.0 * (r + 0.5) / size, 0.0])
+            for r in range(size) for c in range(size)]
+
+
+def hidden_by_sphere(d, p):
+    """Which unit directions d (rows) from ground point p the unit sphere resting at (0, 0, 1) hides."""
+    o = p - np.array([0, 0, 1.0])
+    b = d @ o
+    return (b < 0) & (b * b - (o @ o - 1) > 0)
+
+
 def ground_truth(image, size=16, sub=2, negatives_as_zero=False):
     """What ground_under_sphere renders, computed from a lat-long image's own pixels (each sub x sub points,
     negatives kept unless negatives_as_zero): the luminance irradiance / pi at each pixel's ground point, as a
@@ -108,13 +122,8 @@ def ground_truth(image, size=16, sub=2, negatives_as_zero=False):
     radiance = np.repeat(np.repeat(lum, sub, 0), sub, 1).ravel()
     up = d[:, 2] > 0
     d, weight = d[up], (omega * radiance)[up] * d[up, 2]
-    out = np.empty((size, size))
-    for r in range(size):
-        for c in range(size):
-            o = np.array([-2.5 + 5.0 * (c + 0.5) / size, 2.5 - 5.0 * (r + 0.5) / size, -1.0])  # point - centre
-            b = d @ o
-            out[r, c] = np.sum(weight[~((b < 0) & (b * b - (o @ o - 1) > 0))]) / math.pi
-    return np.repeat(out[..., None], 3, axis=2)  # grey: its luminance is the value (LUM sums to 1)
+    out = np.array([np.sum(weight[~hidden_by_sphere(d, p)]) / math.pi for p in ground_points(size)])
+    return np.repeat(out.reshape(size, size, 1), 3, axis=2)  # grey: its luminance is the value (LUM sums to 1)
 
 
 def relative_rms(truth, got):
