@@ -55,15 +55,17 @@ void KeptBufferDeleter::operator()(void* memory) const {
   {
     std::lock_guard<std::mutex> lock(keptMutex);
     // Up to four buffers are kept (a library of small probes has three in flight, each an image and a table),
-    // of which at most two of 32 MB or more (the add-on's tables at 4K and 8K): a big one replaces the older
-    // big one once two are kept, anything else an empty slot or the one given back longest ago.
+    // of which at most three of 32 MB or more (the add-on's click at 4K and 8K: a 2048 x 1024 grid's table,
+    // 84 MB, its cell sums and its energy^2 sums, 64 MB each): a big one replaces the oldest big one once
+    // three are kept, anything else an empty slot or the one given back longest ago.
     constexpr std::size_t kBig = std::size_t{32} << 20;
+    constexpr int kMaxBig = 3;
     const bool big = capacity >= kBig;
     int bigKept = 0;
     for (const Kept& k : kept) bigKept += k.memory && k.capacity >= kBig;
     Kept* slot = nullptr;
     for (Kept& k : kept) {
-      if (big && bigKept >= 2 && k.capacity < kBig) continue;  // (an empty slot's capacity is 0)
+      if (big && bigKept >= kMaxBig && k.capacity < kBig) continue;  // (an empty slot's capacity is 0)
       if (!k.memory) {
         slot = &k;
         break;
