@@ -42,22 +42,37 @@ double Evaluator::kernel(const Light& l, const Receiver& r) const {
                         r.ground ? &r.sphere : nullptr);
 }
 
-void Evaluator::kernels(const Light& l, const std::vector<Receiver>& receivers, double scale,
-                        std::vector<double>& out) const {
-  out.resize(receivers.size());
+namespace {
+// out[i] = scale * the light's kernel at receivers[at(i)], i < out.size(), its cone prepared once.
+template <class At>
+void kernelsAt(const Evaluator& evaluator, const Light& l, const std::vector<Receiver>& receivers, At&& at,
+               double scale, std::span<double> out) {
   if (!(l.angle > 0)) {
-    for (std::size_t k = 0; k < receivers.size(); ++k) out[k] = scale * kernel(l, receivers[k]);
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = scale * evaluator.kernel(l, receivers[at(i)]);
     return;
   }
-  const Cone cone = makeCone(l.direction, l.angle, profile_);
+  const Cone cone = makeCone(l.direction, l.angle, evaluator.sunProfile());
   const Vec3 up{0, 0, 1};
   const double open = coneIrradiance(cone, up);  // a ground point the sphere hides none of the cone from
-  for (std::size_t k = 0; k < receivers.size(); ++k) {
-    const Receiver& r = receivers[k];
-    out[k] = scale * (!r.ground                  ? coneIrradiance(cone, r.at)
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const Receiver& r = receivers[at(i)];
+    out[i] = scale * (!r.ground                  ? coneIrradiance(cone, r.at)
                       : overlaps(cone, r.sphere) ? coneIrradiance(cone, up, &r.sphere)
                                                  : open);
   }
+}
+}  // namespace
+
+void Evaluator::kernels(const Light& l, const std::vector<Receiver>& receivers, double scale,
+                        std::vector<double>& out) const {
+  out.resize(receivers.size());
+  kernelsAt(*this, l, receivers, [](std::size_t i) { return i; }, scale, out);
+}
+
+void Evaluator::kernels(const Light& l, const std::vector<Receiver>& receivers, std::span<const int> which,
+                        double scale, std::span<double> out) const {
+  kernelsAt(
+      *this, l, receivers, [&](std::size_t i) { return static_cast<std::size_t>(which[i]); }, scale, out);
 }
 
 double Evaluator::glossyKernel(const Light& l, const Vec3& r, int exponent) const {

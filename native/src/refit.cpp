@@ -8,6 +8,7 @@
 #include "parallel.h"
 #include "probelights/error.h"
 #include "probelights/nnls.h"
+#include "trial_fit.h"
 
 namespace probelights {
 
@@ -23,64 +24,43 @@ Vec3 rotateAbout(const Vec3& d, const Vec3& axis, double angle) {  // Rodrigues'
 }
 
 // Coordinate descent on the lights' directions against the receivers' luminance (weighted: each set's
-// relative error^2), colours fixed. The sum of the lights' answers per receiver is kept, so a trial move of
-// one light costs one pass over the receivers.
+// relative error^2), colours fixed: each light tries four moves (trial_fit.h), in order, each from the
+// direction the moves before it left; the ones not yet tried are scored together from the current direction,
+// again after a move is taken (one batch and a quarter a light on average), so the moves are the same as one
+// by one.
 void moveDirections(const Evaluator& evaluator, const std::vector<Receiver>& receivers,
                     std::vector<Light>& lights) {
-  const std::size_t m = receivers.size();
-  std::vector<double> target(m), sum(m, 0.0), term(m), trial(m);
-  for (std::size_t i = 0; i < m; ++i) target[i] = luminance(receivers[i].truth);
-  auto contribution = [&](const Light& l, std::vector<double>& out) {
-    evaluator.kernels(l, receivers, luminance(l.rgb), out);
-  };
-  for (const Light& l : lights) {
-    contribution(l, term);
-    for (std::size_t i = 0; i < m; ++i) sum[i] += term[i];
-  }
-  auto error = [&](const std::vector<double>& s) {
-    double e = 0;
-    for (std::size_t i = 0; i < m; ++i) e += receivers[i].weight * (s[i] - target[i]) * (s[i] - target[i]);
-    return e;
-  };
   // The brightest kMaxMoved lights move; past them a light is a small part of the light and a move buys
-  // little for its cost (every trial is a pass over the receivers).
+  // little for its cost.
   std::vector<std::size_t> order(lights.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     return luminance(lights[a].rgb) > luminance(lights[b].rgb);
   });
   if (order.size() > kMaxMoved) order.resize(kMaxMoved);
-  double current = error(sum);
+  TrialFit fit(evaluator, receivers, lights, order);
   for (double step : {4.0, 2.0, 1.0, 0.5})
     for (std::size_t index : order) {
       Light& l = lights[index];
       const Vec3 d = l.direction;
       const Vec3 t1 = std::abs(d.z) < 0.9 ? Vec3{-d.y, d.x, 0} : Vec3{0, -d.z, d.y};
       const Vec3 t2{d.y * t1.z - d.z * t1.y, d.z * t1.x - d.x * t1.z, d.x * t1.y - d.y * t1.x};
-      contribution(l, term);
-      // The four trial moves in order, each from the direction the moves before it left: the ones not yet
-      // tried are computed together (in parallel) from the current direction, again after a move is taken
-      // (one batch and a quarter a light on average), so the moves are the same as one by one.
       const std::array<std::pair<Vec3, double>, 4> moves{{{t1, step}, {t1, -step}, {t2, step}, {t2, -step}}};
-      std::array<std::vector<double>, 4> candidates;
-      std::array<Vec3, 4> directions;
       for (std::size_t first = 0; first < moves.size();) {
-        parallelFor(static_cast<std::int64_t>(moves.size() - first), [&](std::int64_t c) {
-          const auto& [axis, degrees] = moves[first + c];
-          Light moved = l;
-          moved.direction = directions[first + c] = rotateAbout(l.direction, axis, degrees * kPi / 180);
-          contribution(moved, candidates[first + c]);
-        });
-        std::size_t next = moves.size();
+        std::vector<Light> trials{l};
         for (std::size_t c = first; c < moves.size(); ++c) {
-          for (std::size_t i = 0; i < m; ++i) trial[i] = sum[i] - term[i] + candidates[c][i];
-          const double e = error(trial);
-          if (e < current) {
-            current = e, sum.swap(trial), term.swap(candidates[c]), l.direction = directions[c];
-            next = c + 1;
+          trials.push_back(l);
+          trials.back().direction = rotateAbout(l.direction, moves[c].first, moves[c].second * kPi / 180);
+        }
+        const std::vector<double> f = fit.objectives(index, trials);
+        std::size_t next = moves.size();
+        for (std::size_t t = 1; t < trials.size(); ++t)
+          if (f[t] < f[0]) {
+            fit.accept(index, t);
+            l.direction = trials[t].direction;
+            next = first + t;
             break;
           }
-        }
         first = next;
       }
     }

@@ -8,6 +8,7 @@
 #include "parallel.h"
 #include "probelights/error.h"
 #include "probelights/names.h"
+#include "trial_fit.h"
 
 namespace probelights {
 
@@ -28,27 +29,7 @@ void fitSunAngles(const Evaluator& evaluator, std::vector<Light>& lights, bool r
   // The fit receivers (evaluate.h): ground points under the sphere and normals, each set weighted so the
   // objective is shadow error^2 + diffuse error^2 (on points the errors are not measured on).
   const std::vector<Receiver> receivers = evaluator.fitReceivers(refitReceivers);
-  const std::size_t m = receivers.size();
-  if (m == 0 || lights.empty()) return;
-
-  auto contribution = [&](const Light& l, std::vector<double>& out) {
-    evaluator.kernels(l, receivers, luminance(l.rgb), out);
-  };
-  std::vector<std::vector<double>> terms(lights.size(), std::vector<double>(m));
-  parallelFor(static_cast<std::int64_t>(lights.size()),
-              [&](std::int64_t i) { contribution(lights[i], terms[i]); });
-  std::vector<double> sum(m, 0.0);
-  for (const auto& t : terms)
-    for (std::size_t k = 0; k < m; ++k) sum[k] += t[k];
-  // The objective with light i's term replaced by `term`.
-  auto objective = [&](const std::vector<double>& old, const std::vector<double>& term) {
-    double e = 0;
-    for (std::size_t k = 0; k < m; ++k) {
-      const double d = sum[k] - old[k] + term[k] - luminance(receivers[k].truth);
-      e += receivers[k].weight * d * d;
-    }
-    return e;
-  };
+  if (receivers.empty() || lights.empty()) return;
 
   const double widest = evaluator.maxSunAngle();
   std::vector<std::size_t> order(lights.size());
@@ -59,31 +40,21 @@ void fitSunAngles(const Evaluator& evaluator, std::vector<Light>& lights, bool r
   // The brightest kMaxFitted lights are fitted; past them each light is a small part of the light and keeps
   // its spread's angle (a 1024-light fit would cost seconds for nothing visible).
   if (order.size() > kMaxFitted) order.resize(kMaxFitted);
+  TrialFit fit(evaluator, receivers, lights, order);
   for (int round = 0; round < 2; ++round)
     for (std::size_t i : order) {
       Light& light = lights[i];
       if (!(luminance(light.rgb) > 0)) continue;
       const double start = std::max(light.angularRadius, kSmallest);
-      // Candidates tried in parallel: each one's terms at every receiver.
+      // The light as it is and the candidates (trial_fit.h); the best if better than the light as it is.
       auto tryAngles = [&](const std::vector<double>& angles) {
-        std::vector<std::vector<double>> t(angles.size(), std::vector<double>(m));
-        parallelFor(static_cast<std::int64_t>(angles.size()), [&](std::int64_t c) {
-          Light trial = light;
-          trial.angle = angles[c];
-          contribution(trial, t[c]);
-        });
-        std::size_t best = 0;
-        double bestError = objective(terms[i], terms[i]);
-        bool improved = false;
-        for (std::size_t c = 0; c < angles.size(); ++c) {
-          const double e = objective(terms[i], t[c]);
-          if (e < bestError) bestError = e, best = c, improved = true;
-        }
-        if (!improved) return false;
-        for (std::size_t k = 0; k < m; ++k) sum[k] += t[best][k] - terms[i][k];
-        terms[i].swap(t[best]);
-        light.angle = angles[best];
-        return true;
+        std::vector<Light> trials(angles.size() + 1, light);
+        for (std::size_t c = 0; c < angles.size(); ++c) trials[c + 1].angle = angles[c];
+        const std::vector<double> f = fit.objectives(i, trials);
+        const std::size_t best = static_cast<std::size_t>(std::min_element(f.begin(), f.end()) - f.begin());
+        if (best == 0 || !(f[best] < f[0])) return;
+        fit.accept(i, best);
+        light.angle = trials[best].angle;
       };
       std::vector<double> coarse{0.0};
       // Half-octave steps from start / 8 to start * 4 (no exp2 or pow: the add-on's module stays on glibc

@@ -15,6 +15,7 @@
 #pragma once
 
 #include <limits>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -112,6 +113,9 @@ class Evaluator {
   // The light's kernel at every receiver, times `scale` (its cone prepared once).
   void kernels(const Light& light, const std::vector<Receiver>& receivers, double scale,
                std::vector<double>& out) const;
+  // The same at receivers[which[i]] only, into out[i] (out as long as which).
+  void kernels(const Light& light, const std::vector<Receiver>& receivers, std::span<const int> which,
+               double scale, std::span<double> out) const;
 
   // The lights' answers: closed form for points, over each light's cone for suns with an angle (cone.h, in
   // the options' sun profile).
