@@ -205,30 +205,37 @@ Samples splitBrightest(const Probe& probe, int cell, const Samples& samples,
   return out;
 }
 
-// The samples binned by (z, azimuth) (equal-area bins) for the truths' sums: each bin keeps its samples
-// together, the cone that bounds their directions and their per-channel moments sum(L w). A sum over the
-// samples with a kernel that is linear in w on a whole bin (n . w on the bins above a normal's horizon, w.z
-// on the bins inside the sphere's cap) takes the bin's moments; a bin the kernel is zero on is skipped; only
-// the bins a boundary crosses are visited sample by sample. The sums are exact up to rounding.
-struct SampleBins {
-  int bandsZ, binsPhi;
+// The samples binned by (z, azimuth) (equal-area bins) for the truths' sums, and the bins grouped 2 x 2 level
+// by level up to a top level of kTopBands x 2 kTopBands: every node keeps the cone that bounds its samples'
+// directions and their per-channel moments sum(L w). A sum over the samples with a kernel that is linear in w
+// on a whole node (n . w above a normal's horizon, w.z inside the sphere's cap) takes the node's moments; a
+// node the kernel is zero on is skipped; a node a boundary crosses is opened, down to the leaf bins, whose
+// samples are visited one by one. A boundary crosses O(sqrt(nodes)) nodes a level, so a sum costs
+// ~ sqrt(samples) operations instead of the samples' count. The sums are exact up to rounding.
+struct SampleTree {
+  static constexpr int kTopBands = 4;
   double zMin;             // the bins cover z in [zMin, 1]; samples below are left out
-  std::vector<int> start;  // bin b's samples are [start[b], start[b + 1])
+  int levels, bandsZ, binsPhi;  // the leaves: bandsZ x binsPhi bins, levels - 1 groupings above them
+  std::vector<int> start;  // leaf b's samples are [start[b], start[b + 1])
   std::vector<Vec3> dir;
   std::vector<Rgb> rad;
-  struct Bound {
-    Vec3 axis;
-    double cosR = -1, sinR = 1;  // the bounding cone's radius (cosR <= 0: too wide to bound, always visited)
+  struct Node {
+    Vec3 axis, sum;              // the bounding cone's axis; the sum of the directions
+    double cosR = -1, sinR = 1;  // the bounding cone's radius (cosR <= 0: too wide to bound, always opened)
     std::array<Vec3, 3> moment;  // per channel: sum of L w
+    int count = 0;
   };
-  std::vector<Bound> bounds;
+  std::vector<std::vector<Node>> nodes;  // nodes[l]: (kTopBands << l) x (2 kTopBands << l), z-band major
 
-  SampleBins(const std::vector<Vec3>& directions, const std::vector<Rgb>& radiance, int bandsZ_, int binsPhi_,
-             double zMin_)
-      : bandsZ(bandsZ_),
-        binsPhi(binsPhi_),
-        zMin(zMin_),
-        start(static_cast<std::size_t>(bandsZ_) * binsPhi_ + 1) {
+  // Leaves of about `perLeaf` samples (at least the top level).
+  SampleTree(const std::vector<Vec3>& directions, const std::vector<Rgb>& radiance, double zMin_, int perLeaf)
+      : zMin(zMin_), levels(1) {
+    while (levels < 12 && static_cast<double>(kTopBands << (levels - 1)) * (2 * kTopBands << (levels - 1)) *
+                                  perLeaf * 4 <=
+                              static_cast<double>(directions.size()))
+      ++levels;
+    bandsZ = kTopBands << (levels - 1), binsPhi = 2 * bandsZ;
+    start.assign(static_cast<std::size_t>(bandsZ) * binsPhi + 1, 0);
     std::vector<int> bin(directions.size(), -1);
     for (std::size_t k = 0; k < directions.size(); ++k)
       if (directions[k].z > zMin || zMin <= -1) ++start[(bin[k] = binOf(directions[k])) + 1];
@@ -240,106 +247,147 @@ struct SampleBins {
         const int at = fill[bin[k]]++;
         dir[at] = directions[k], rad[at] = radiance[k];
       }
-    bounds.resize(start.size() - 1);
-    parallelFor(static_cast<std::int64_t>(bounds.size()), [&](std::int64_t b) {
-      Bound& out = bounds[b];
-      Vec3 sum;
+    nodes.resize(levels);
+    std::vector<Node>& leaves = nodes[levels - 1];
+    leaves.resize(start.size() - 1);
+    parallelFor(static_cast<std::int64_t>(leaves.size()), [&](std::int64_t b) {
+      Node& out = leaves[b];
       for (int k = start[b]; k < start[b + 1]; ++k) {
-        sum += dir[k];
+        out.sum += dir[k];
         for (int c = 0; c < 3; ++c) out.moment[c] += rad[k][c] * dir[k];
       }
-      const double len = sum.length();
+      out.count = start[b + 1] - start[b];
+      const double len = out.sum.length();
       if (!(len > 0)) return;
-      out.axis = (1 / len) * sum;
+      out.axis = (1 / len) * out.sum;
       double cosR = 1;
       for (int k = start[b]; k < start[b + 1]; ++k) cosR = std::min(cosR, dot(dir[k], out.axis));
       // A bound a little wider than the widest sample, so rounding never takes a crossed bin whole.
       out.cosR = cosR - 1e-9;
       out.sinR = std::min(1.0, std::sqrt(std::max(0.0, 1 - cosR * cosR)) + 1e-9);
     });
-  }
-  int bandOf(double z) const {
-    return std::clamp(static_cast<int>((z - zMin) / (1 - zMin) * bandsZ), 0, bandsZ - 1);
+    for (int l = levels - 2; l >= 0; --l) {
+      const int phi = 2 * kTopBands << l;
+      const std::vector<Node>& below = nodes[l + 1];
+      std::vector<Node>& here = nodes[l];
+      here.resize(below.size() / 4);
+      parallelFor(static_cast<std::int64_t>(here.size()), [&](std::int64_t i) {
+        Node& out = here[static_cast<std::size_t>(i)];
+        const int z = static_cast<int>(i) / phi, p = static_cast<int>(i) % phi;
+        bool bounded = true;
+        for (int c = 0; c < 4; ++c) {
+          const Node& child = below[static_cast<std::size_t>((2 * z + c / 2) * 2 * phi + 2 * p + c % 2)];
+          if (child.count == 0) continue;
+          out.sum += child.sum, out.count += child.count, bounded = bounded && child.cosR > 0;
+          for (int ch = 0; ch < 3; ++ch) out.moment[ch] += child.moment[ch];
+        }
+        const double len = out.sum.length();
+        if (!bounded || !(len > 0)) return;
+        out.axis = (1 / len) * out.sum;
+        // The widest of its samples (those of the leaves below it) from the axis.
+        const int f = 1 << (levels - 1 - l);
+        double cosR = 1;
+        for (int lz = z * f; lz < (z + 1) * f; ++lz)
+          for (int k = start[static_cast<std::size_t>(lz) * binsPhi + p * f];
+               k < start[static_cast<std::size_t>(lz) * binsPhi + (p + 1) * f]; ++k)
+            cosR = std::min(cosR, dot(dir[k], out.axis));
+        if (cosR > 0) out.cosR = cosR - 1e-9, out.sinR = std::min(1.0, std::sqrt(1 - cosR * cosR) + 1e-9);
+      });
+    }
   }
   int binOf(const Vec3& d) const {
+    const int z = std::clamp(static_cast<int>((d.z - zMin) / (1 - zMin) * bandsZ), 0, bandsZ - 1);
     const double u = (std::atan2(d.y, d.x) + kPi) / (2 * kPi);
-    return bandOf(d.z) * binsPhi + std::clamp(static_cast<int>(u * binsPhi), 0, binsPhi - 1);
+    return z * binsPhi + std::clamp(static_cast<int>(u * binsPhi), 0, binsPhi - 1);
   }
-};
-
-// The irradiance truth E(n) = sum of L max(0, n . w) over the samples: a bin wholly above the normal's
-// horizon gives n . its moments, one wholly below nothing. ~128 samples a bin; 2048-wide probe: ~20x fewer
-// operations than every sample for every normal.
-std::vector<Rgb> irradianceTruthAt(const std::vector<Vec3>& directions, const std::vector<Rgb>& radiance,
-                                   const std::vector<Vec3>& normals) {
-  const int bandsZ = std::clamp(static_cast<int>(std::sqrt(directions.size() / 256.0)), 4, 512);
-  const SampleBins bins(directions, radiance, bandsZ, 2 * bandsZ, -1);
-  std::vector<Rgb> out(normals.size());
-  parallelFor(static_cast<std::int64_t>(normals.size()), [&](std::int64_t i) {
-    const Vec3& n = normals[i];
-    Rgb e{};
-    for (std::size_t b = 0; b < bins.bounds.size(); ++b) {
-      const SampleBins::Bound& bound = bins.bounds[b];
-      const double s = dot(n, bound.axis);
-      if (bound.cosR > 0 && s >= bound.sinR) {
-        for (int c = 0; c < 3; ++c) e[c] += dot(n, bound.moment[c]);
-      } else if (bound.cosR <= 0 || s > -bound.sinR) {
-        for (int k = bins.start[b]; k < bins.start[b + 1]; ++k) {
-          const double w = dot(n, bins.dir[k]);
-          if (w > 0)
-            for (int c = 0; c < 3; ++c) e[c] += bins.rad[k][c] * w;
+  // Visits the tree: whole(node) for a node taken whole, samples(first, last) for a leaf's crossed samples;
+  // classify(node) says Whole, Skip or Open.
+  enum class Take { Whole, Skip, Open };
+  template <class Classify, class WholeNode, class Samples>
+  void visit(Classify&& classify, WholeNode&& whole, Samples&& samples) const {
+    // Depth first: the top level's nodes and at most three siblings a level wait on the stack.
+    std::array<std::pair<int, int>, 2 * kTopBands * kTopBands + 3 * 12 + 4> stack;
+    int top = 0;
+    for (int i = static_cast<int>(nodes[0].size()) - 1; i >= 0; --i) stack[top++] = {0, i};
+    while (top > 0) {
+      const auto [l, i] = stack[--top];
+      const Node& node = nodes[l][static_cast<std::size_t>(i)];
+      if (node.count == 0) continue;
+      const Take take = node.cosR > 0 ? classify(node) : Take::Open;
+      if (take == Take::Whole) {
+        whole(node);
+      } else if (take == Take::Open) {
+        if (l + 1 == levels) {
+          samples(start[i], start[i + 1]);
+        } else {
+          const int phi = 2 * kTopBands << l, z = i / phi, p = i % phi;
+          for (int c = 3; c >= 0; --c) stack[top++] = {l + 1, (2 * z + c / 2) * 2 * phi + 2 * p + c % 2};
         }
       }
     }
+  }
+};
+
+// The irradiance truth E(n) = sum of L max(0, n . w) over the samples: a node wholly above the normal's
+// horizon gives n . its moments, one wholly below nothing.
+std::vector<Rgb> irradianceTruthAt(const std::vector<Vec3>& directions, const std::vector<Rgb>& radiance,
+                                   const std::vector<Vec3>& normals) {
+  const SampleTree tree(directions, radiance, -1, 32);
+  std::vector<Rgb> out(normals.size());
+  using Take = SampleTree::Take;
+  parallelFor(static_cast<std::int64_t>(normals.size()), [&](std::int64_t i) {
+    const Vec3& n = normals[i];
+    Rgb e{};
+    tree.visit(
+        [&](const SampleTree::Node& node) {
+          const double s = dot(n, node.axis);
+          return s >= node.sinR ? Take::Whole : s <= -node.sinR ? Take::Skip : Take::Open;
+        },
+        [&](const SampleTree::Node& node) {
+          for (int c = 0; c < 3; ++c) e[c] += dot(n, node.moment[c]);
+        },
+        [&](int first, int last) {
+          for (int k = first; k < last; ++k) {
+            const double w = dot(n, tree.dir[k]);
+            if (w > 0)
+              for (int c = 0; c < 3; ++c) e[c] += tree.rad[k][c] * w;
+          }
+        });
     out[i] = e;
   });
   return out;
 }
 
 // A ground point's truth is the upper hemisphere's irradiance less what the sphere hides: the samples inside
-// the sphere's cap seen from the point. Each point visits only the bins the cap's bounding box touches; a bin
-// wholly inside the cap is hidden by its moments' z, one wholly outside skipped, the crossed ones tested
-// sample by sample.
+// the sphere's cap seen from the point. A node wholly inside the cap is hidden by its moments' z, one wholly
+// outside skipped.
 std::vector<Rgb> shadowTruthAt(const std::vector<Vec3>& directions, const std::vector<Rgb>& radiance,
                                const std::vector<Vec3>& points) {
-  constexpr int kBandsZ = 128, kBinsPhi = 256;
-  const SampleBins bins(directions, radiance, kBandsZ, kBinsPhi, 0);
+  const SampleTree tree(directions, radiance, 0, 32);
   Rgb upper{};
-  for (const SampleBins::Bound& bound : bins.bounds)
-    for (int c = 0; c < 3; ++c) upper[c] += bound.moment[c].z;
+  for (const SampleTree::Node& node : tree.nodes[0])
+    for (int c = 0; c < 3; ++c) upper[c] += node.moment[c].z;
   std::vector<Rgb> out(points.size());
+  using Take = SampleTree::Take;
   parallelFor(static_cast<std::int64_t>(points.size()), [&](std::int64_t i) {
     const Cap cap = sphereCap(points[i], {0, 0, 1}, 1.0);
     const double cosG = std::cos(cap.radius), sinG = std::sin(cap.radius);
-    const double theta = std::acos(std::clamp(cap.axis.z, -1.0, 1.0));
-    const double zLo = std::cos(std::min(0.5 * kPi, theta + cap.radius));
-    const bool pole = theta <= cap.radius;  // the cap holds the zenith: every azimuth
-    const double zHi = pole ? 1.0 : std::cos(theta - cap.radius);
-    int phiFirst = 0, phiCount = kBinsPhi;
-    if (!pole) {
-      const double half = std::asin(std::min(1.0, sinG / std::sin(theta)));
-      const double u0 = (std::atan2(cap.axis.y, cap.axis.x) - half + kPi) / (2 * kPi);
-      phiFirst = static_cast<int>(std::floor(u0 * kBinsPhi));
-      phiCount = std::min(kBinsPhi, static_cast<int>(std::ceil(2 * half / (2 * kPi) * kBinsPhi)) + 2);
-    }
     Rgb hidden{};
-    for (int z = bins.bandOf(zLo); z <= bins.bandOf(zHi); ++z)
-      for (int j = 0; j < phiCount; ++j) {
-        const int b = z * kBinsPhi + ((phiFirst + j) % kBinsPhi + kBinsPhi) % kBinsPhi;
-        if (bins.start[b] == bins.start[b + 1]) continue;
-        const SampleBins::Bound& bound = bins.bounds[b];
-        const double c = dot(bound.axis, cap.axis);
-        if (bound.cosR > 0) {
-          if (cosG <= bound.cosR && c >= cosG * bound.cosR + sinG * bound.sinR) {  // wholly inside
-            for (int ch = 0; ch < 3; ++ch) hidden[ch] += bound.moment[ch].z;
-            continue;
-          }
-          if (c < cosG * bound.cosR - sinG * bound.sinR) continue;  // wholly outside
-        }
-        for (int k = bins.start[b]; k < bins.start[b + 1]; ++k)
-          if (dot(bins.dir[k], cap.axis) > cosG)
-            for (int ch = 0; ch < 3; ++ch) hidden[ch] += bins.rad[k][ch] * bins.dir[k].z;
-      }
+    tree.visit(
+        [&](const SampleTree::Node& node) {
+          const double c = dot(node.axis, cap.axis);
+          if (cosG <= node.cosR && c >= cosG * node.cosR + sinG * node.sinR) return Take::Whole;
+          if (c < cosG * node.cosR - sinG * node.sinR) return Take::Skip;
+          return Take::Open;
+        },
+        [&](const SampleTree::Node& node) {
+          for (int ch = 0; ch < 3; ++ch) hidden[ch] += node.moment[ch].z;
+        },
+        [&](int first, int last) {
+          for (int k = first; k < last; ++k)
+            if (dot(tree.dir[k], cap.axis) > cosG)
+              for (int ch = 0; ch < 3; ++ch) hidden[ch] += tree.rad[k][ch] * tree.dir[k].z;
+        });
     for (int c = 0; c < 3; ++c) out[i][c] = upper[c] - hidden[c];
   });
   return out;
