@@ -1,5 +1,5 @@
 // What the add-on's one click costs after the bake, stage by stage, on the bundled probe (1K) at 16 and 64
-// lights with its settings (evaluator 512 wide, energy^2 centroids, refit with directions, fitted sun angles):
+// lights with its settings (evaluator 512 wide, energy^2 centroids, refit with directions, fitted angles):
 //   BM_Evaluator      the evaluator for the refit: samples, the diffuse and shadow truths
 //   BM_FitAngles      fitSunAngles on the bake's lights (the first of finishLights' two)
 //   BM_Refit          refitIrradiance with directions moved (colours, dark lights placed, 3 rounds of moves)
@@ -83,9 +83,9 @@ void BM_Kernels(benchmark::State& state) {
   std::vector<double> out;
   for (auto _ : state)
     for (const Light& l : lights) c.evaluator->kernels(l, receivers, 1.0, out);
-  state.counters["ns_per_kernel"] = benchmark::Counter(
-      static_cast<double>(state.iterations()) * lights.size() * receivers.size(),
-      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["ns_per_kernel"] =
+      benchmark::Counter(static_cast<double>(state.iterations()) * lights.size() * receivers.size(),
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
 BENCHMARK(BM_Evaluator)->Unit(benchmark::kMillisecond)->UseRealTime();

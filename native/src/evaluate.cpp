@@ -214,9 +214,9 @@ Samples splitBrightest(const Probe& probe, int cell, const Samples& samples,
 // ~ sqrt(samples) operations instead of the samples' count. The sums are exact up to rounding.
 struct SampleTree {
   static constexpr int kTopBands = 4;
-  double zMin;             // the bins cover z in [zMin, 1]; samples below are left out
+  double zMin;                  // the bins cover z in [zMin, 1]; samples below are left out
   int levels, bandsZ, binsPhi;  // the leaves: bandsZ x binsPhi bins, levels - 1 groupings above them
-  std::vector<int> start;  // leaf b's samples are [start[b], start[b + 1])
+  std::vector<int> start;       // leaf b's samples are [start[b], start[b + 1])
   std::vector<Vec3> dir;
   std::vector<Rgb> rad;
   struct Node {
@@ -230,9 +230,9 @@ struct SampleTree {
   // Leaves of about `perLeaf` samples (at least the top level).
   SampleTree(const std::vector<Vec3>& directions, const std::vector<Rgb>& radiance, double zMin_, int perLeaf)
       : zMin(zMin_), levels(1) {
-    while (levels < 12 && static_cast<double>(kTopBands << (levels - 1)) * (2 * kTopBands << (levels - 1)) *
-                                  perLeaf * 4 <=
-                              static_cast<double>(directions.size()))
+    while (levels < 12 &&
+           static_cast<double>(kTopBands << (levels - 1)) * (2 * kTopBands << (levels - 1)) * perLeaf * 4 <=
+               static_cast<double>(directions.size()))
       ++levels;
     bandsZ = kTopBands << (levels - 1), binsPhi = 2 * bandsZ;
     start.assign(static_cast<std::size_t>(bandsZ) * binsPhi + 1, 0);

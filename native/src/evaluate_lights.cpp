@@ -66,7 +66,8 @@ void kernelsAt(const Evaluator& evaluator, const Light& l, const std::vector<Rec
 void Evaluator::kernels(const Light& l, const std::vector<Receiver>& receivers, double scale,
                         std::vector<double>& out) const {
   out.resize(receivers.size());
-  kernelsAt(*this, l, receivers, [](std::size_t i) { return i; }, scale, out);
+  kernelsAt(
+      *this, l, receivers, [](std::size_t i) { return i; }, scale, out);
 }
 
 void Evaluator::kernels(const Light& l, const std::vector<Receiver>& receivers, std::span<const int> which,

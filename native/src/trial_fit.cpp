@@ -27,8 +27,9 @@ TrialFit::TrialFit(const Evaluator& evaluator, const std::vector<Receiver>& rece
   std::vector<char> kept(lights.size(), 0);
   for (std::size_t j : fitted) kept[j] = 1;
   std::vector<std::vector<double>> all(lights.size());
-  parallelFor(static_cast<std::int64_t>(lights.size()),
-              [&](std::int64_t j) { evaluator.kernels(lights[j], receivers, luminance(lights[j].rgb), all[j]); });
+  parallelFor(static_cast<std::int64_t>(lights.size()), [&](std::int64_t j) {
+    evaluator.kernels(lights[j], receivers, luminance(lights[j].rgb), all[j]);
+  });
   for (std::size_t j = 0; j < lights.size(); ++j) {
     for (std::size_t k = 0; k < receivers.size(); ++k) sum_[k] += all[j][k];
     if (kept[j]) terms_[j].swap(all[j]);
@@ -36,7 +37,7 @@ TrialFit::TrialFit(const Evaluator& evaluator, const std::vector<Receiver>& rece
 }
 
 namespace {
-constexpr std::size_t kChunk = 256;  // receivers a scoring task takes
+constexpr std::size_t kChunk = 256;       // receivers a scoring task takes
 constexpr std::size_t kSortChunk = 1024;  // receivers a binning task takes
 
 // The closed forms' moments over some receivers: above the horizon sum w r^2, sum w r n and sum w n n^T
@@ -54,7 +55,8 @@ struct Moments {
   double objective(double s, const Vec3& d, double o) const {
     const double dMd = M[0] * d.x * d.x + M[1] * d.y * d.y + M[2] * d.z * d.z +
                        2 * (M[3] * d.x * d.y + M[4] * d.x * d.z + M[5] * d.y * d.z);
-    return below + (above + 2 * s * dot(d, b) + s * s * dMd) + (open0 + 2 * s * o * open1 + s * s * o * o * open2);
+    return below + (above + 2 * s * dot(d, b) + s * s * dMd) +
+           (open0 + 2 * s * o * open1 + s * s * o * o * open2);
   }
 };
 }  // namespace
@@ -70,14 +72,16 @@ std::vector<double> TrialFit::objectives(std::size_t j, const std::vector<Light>
   for (std::size_t t = 0; t < count; ++t) {
     const Cone cone = makeCone(trials[t].direction, trials[t].angle, evaluator_.sunProfile());
     const Vec3& d = trials[t].direction;
-    const Vec3 cross{from_.y * d.z - from_.z * d.y, from_.z * d.x - from_.x * d.z, from_.x * d.y - from_.y * d.x};
+    const Vec3 cross{from_.y * d.z - from_.z * d.y, from_.z * d.x - from_.x * d.z,
+                     from_.x * d.y - from_.y * d.x};
     reach[t] = std::atan2(cross.length(), dot(from_, d)) + cone.half + 1e-7;
     directions_[t] = d;
     open_[t] = coneIrradiance(cone, {0, 0, 1});
   }
   std::vector<std::size_t> byReach(count);
   for (std::size_t t = 0; t < count; ++t) byReach[t] = t;
-  std::stable_sort(byReach.begin(), byReach.end(), [&](std::size_t a, std::size_t b) { return reach[a] < reach[b]; });
+  std::stable_sort(byReach.begin(), byReach.end(),
+                   [&](std::size_t a, std::size_t b) { return reach[a] < reach[b]; });
   rank_.resize(count);
   // Per rank: the |n . d0| below which a normal's horizon may cross the cone (above pi / 2: every normal),
   // and the cone's radius with its cosine and sine (a ground point's cap of radius g overlaps it when
@@ -192,8 +196,8 @@ void TrialFit::accept(std::size_t j, std::size_t t) {
   const double openTerm = scale_ * open_[t];
   for (std::size_t k = 0; k < receivers_.size(); ++k) {
     const Receiver& r = receivers_[k];
-    const double now = bin_[k] <= p  ? kernels_[t][place_[k]]
-                       : r.ground    ? openTerm
+    const double now = bin_[k] <= p           ? kernels_[t][place_[k]]
+                       : r.ground             ? openTerm
                        : dot(r.at, from_) > 0 ? scale_ * dot(r.at, d)
                                               : 0.0;
     sum_[k] += now - term[k];

@@ -30,8 +30,8 @@ namespace probelights {
 class TrialFit {
  public:
   // `lights`: all of them (their sum); `fitted`: the ones objectives() and accept() may replace.
-  TrialFit(const Evaluator& evaluator, const std::vector<Receiver>& receivers, const std::vector<Light>& lights,
-           const std::vector<std::size_t>& fitted);
+  TrialFit(const Evaluator& evaluator, const std::vector<Receiver>& receivers,
+           const std::vector<Light>& lights, const std::vector<std::size_t>& fitted);
 
   // F_t for each trial replacing light j (one of `fitted`; each trial with light j's rgb). trials[0] must be
   // light j as it is (its term stands for its kernels), so the trials are compared with it in the same
@@ -45,7 +45,7 @@ class TrialFit {
   const std::vector<Receiver>& receivers_;
   std::vector<double> target_, sum_;
   std::vector<std::array<double, 6>> outer_;  // per normal: w n n^T (xx, yy, zz, xy, xz, yz)
-  std::vector<std::vector<double>> terms_;  // per light: its term at each receiver (fitted lights only)
+  std::vector<std::vector<double>> terms_;    // per light: its term at each receiver (fitted lights only)
   // The last objectives() call's: the light's luminance and direction; each trial's rank by reach, direction
   // and unoccluded irradiance; each receiver's bin (the rank of the first trial that reaches it; the trial
   // count if none does) and place in the receivers ordered by bin; that order; each trial's kernels (times

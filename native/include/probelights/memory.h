@@ -17,8 +17,9 @@ void touchPages(void* memory, std::size_t bytes);
 // for the next one that fits (each used for one of at least half its size), so bakes in one process (the
 // add-on's clicks, the tradeoff, a library) do not pay the kernel's first touch again: a 2048 x 1024
 // full-resolution table is 84 MB, 37 ms of fresh memory. Up to four are kept, of which at most three of 32
-// MB or more (a click at 4K or 8K takes three: 212 MB). Their contents are undefined when taken. releaseKeptBuffers() gives them back (the add-on calls it
-// once it has not baked for a minute); keptBytes() says how much is kept.
+// MB or more (a click at 4K or 8K takes three: 212 MB). Their contents are undefined when taken.
+// releaseKeptBuffers() gives them back (the add-on calls it once it has not baked for a minute); keptBytes()
+// says how much is kept.
 struct KeptBufferDeleter {
   std::size_t capacity = 0;
   void operator()(void* memory) const;
