@@ -10,24 +10,6 @@
 
 namespace probelights {
 
-namespace {
-// The weighted squared residual of the lights' luminance on the receivers (each set's relative error^2).
-double fitError(const Evaluator& evaluator, const std::vector<Receiver>& receivers,
-                const std::vector<Light>& lights) {
-  std::vector<double> y(receivers.size(), 0.0), term;
-  for (const Light& l : lights) {
-    evaluator.kernels(l, receivers, luminance(l.rgb), term);
-    for (std::size_t k = 0; k < y.size(); ++k) y[k] += term[k];
-  }
-  double e = 0;
-  for (std::size_t k = 0; k < y.size(); ++k) {
-    const double d = y[k] - luminance(receivers[k].truth);
-    e += receivers[k].weight * d * d;
-  }
-  return e;
-}
-}  // namespace
-
 std::vector<Light> finishLights(const Evaluator& evaluator, std::vector<Light> lights, bool refit,
                                 bool moveDirections, SunAngles angles, double* energyShift) {
   double before = 0;
@@ -43,7 +25,7 @@ std::vector<Light> finishLights(const Evaluator& evaluator, std::vector<Light> l
       moved = refitIrradiance(evaluator, moved);
     }
     const std::vector<Receiver> receivers = evaluator.fitReceivers(true);
-    if (fitError(evaluator, receivers, moved) <= fitError(evaluator, receivers, lights))
+    if (evaluator.fitError(receivers, moved) <= evaluator.fitError(receivers, lights))
       lights = std::move(moved);
   }
   if (energyShift) {

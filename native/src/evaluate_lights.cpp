@@ -76,6 +76,20 @@ void Evaluator::kernels(const Light& l, const std::vector<Receiver>& receivers, 
       *this, l, receivers, [&](std::size_t i) { return static_cast<std::size_t>(which[i]); }, scale, out);
 }
 
+double Evaluator::fitError(const std::vector<Receiver>& receivers, const std::vector<Light>& lights) const {
+  std::vector<double> y(receivers.size(), 0.0), term;
+  for (const Light& l : lights) {
+    kernels(l, receivers, luminance(l.rgb), term);
+    for (std::size_t k = 0; k < y.size(); ++k) y[k] += term[k];
+  }
+  double e = 0;
+  for (std::size_t k = 0; k < y.size(); ++k) {
+    const double d = y[k] - luminance(receivers[k].truth);
+    e += receivers[k].weight * d * d;
+  }
+  return e;
+}
+
 double Evaluator::glossyKernel(const Light& l, const Vec3& r, int exponent) const {
   return coneGlossy(l.direction, l.angle, r, exponent, profile_);  // angle 0: the point light's lobe
 }

@@ -5,7 +5,6 @@
 #include <numbers>
 #include <numeric>
 
-#include "parallel.h"
 #include "probelights/error.h"
 #include "probelights/names.h"
 #include "trial_fit.h"

@@ -14,21 +14,11 @@
 namespace probelights {
 namespace {
 
-// sum_k w (sum of the lights' kernels - target)^2 over every receiver, light j replaced by `trial`.
+// The plain objective over every receiver, light j replaced by `trial`.
 double bruteForce(const Evaluator& ev, const std::vector<Receiver>& receivers, std::vector<Light> lights,
                   std::size_t j, const Light& trial) {
   lights[j] = trial;
-  std::vector<double> sum(receivers.size(), 0.0), term;
-  for (const Light& l : lights) {
-    ev.kernels(l, receivers, luminance(l.rgb), term);
-    for (std::size_t k = 0; k < receivers.size(); ++k) sum[k] += term[k];
-  }
-  double f = 0;
-  for (std::size_t k = 0; k < receivers.size(); ++k) {
-    const double d = sum[k] - luminance(receivers[k].truth);
-    f += receivers[k].weight * d * d;
-  }
-  return f;
+  return ev.fitError(receivers, lights);
 }
 
 Vec3 rotated(const Vec3& d, double degrees, std::mt19937& rng) {

@@ -107,6 +107,9 @@ class Evaluator {
   // while the angle fit alone, one number a light, keeps the 400 (README: "Soft shadows").
   std::vector<Receiver> fitReceivers(bool refit = false) const;
   double kernel(const Light& light, const Receiver& r) const;
+  // The fits' objective: the weighted squared residual of the lights' luminance on the receivers (each set's
+  // relative error^2), summed over every receiver (trial_fit.h computes the same for trials, faster).
+  double fitError(const std::vector<Receiver>& receivers, const std::vector<Light>& lights) const;
   // The directions of the probe's `count` brightest samples (by luminance), brightest first: where a light
   // the refit places anew may go (refit.cpp).
   std::vector<Vec3> brightestDirections(std::size_t count) const;
