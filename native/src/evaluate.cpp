@@ -213,7 +213,7 @@ Samples splitBrightest(const Probe& probe, int cell, const Samples& samples,
 // samples are visited one by one. A boundary crosses O(sqrt(nodes)) nodes a level, so a sum costs
 // ~ sqrt(samples) operations instead of the samples' count. The sums are exact up to rounding.
 struct SampleTree {
-  static constexpr int kTopBands = 4;
+  static constexpr int kTopBands = 4, kMaxLevels = 12;
   double zMin;                  // the bins cover z in [zMin, 1]; samples below are left out
   int levels, bandsZ, binsPhi;  // the leaves: bandsZ x binsPhi bins, levels - 1 groupings above them
   std::vector<int> start;       // leaf b's samples are [start[b], start[b + 1])
@@ -227,10 +227,10 @@ struct SampleTree {
   };
   std::vector<std::vector<Node>> nodes;  // nodes[l]: (kTopBands << l) x (2 kTopBands << l), z-band major
 
-  // Leaves of about `perLeaf` samples (at least the top level).
+  // Leaves of perLeaf to 4 perLeaf samples on average (at least the top level).
   SampleTree(const std::vector<Vec3>& directions, const std::vector<Rgb>& radiance, double zMin_, int perLeaf)
       : zMin(zMin_), levels(1) {
-    while (levels < 12 &&
+    while (levels < kMaxLevels &&
            static_cast<double>(kTopBands << (levels - 1)) * (2 * kTopBands << (levels - 1)) * perLeaf * 4 <=
                static_cast<double>(directions.size()))
       ++levels;
@@ -247,6 +247,7 @@ struct SampleTree {
         const int at = fill[bin[k]]++;
         dir[at] = directions[k], rad[at] = radiance[k];
       }
+    // Sums and counts: the leaves' from their samples, each level's from the four nodes below it.
     nodes.resize(levels);
     std::vector<Node>& leaves = nodes[levels - 1];
     leaves.resize(start.size() - 1);
@@ -257,35 +258,31 @@ struct SampleTree {
         for (int c = 0; c < 3; ++c) out.moment[c] += rad[k][c] * dir[k];
       }
       out.count = start[b + 1] - start[b];
-      const double len = out.sum.length();
-      if (!(len > 0)) return;
-      out.axis = (1 / len) * out.sum;
-      double cosR = 1;
-      for (int k = start[b]; k < start[b + 1]; ++k) cosR = std::min(cosR, dot(dir[k], out.axis));
-      // A bound a little wider than the widest sample, so rounding never takes a crossed bin whole.
-      out.cosR = cosR - 1e-9;
-      out.sinR = std::min(1.0, std::sqrt(std::max(0.0, 1 - cosR * cosR)) + 1e-9);
     });
     for (int l = levels - 2; l >= 0; --l) {
       const int phi = 2 * kTopBands << l;
-      const std::vector<Node>& below = nodes[l + 1];
-      std::vector<Node>& here = nodes[l];
-      here.resize(below.size() / 4);
-      parallelFor(static_cast<std::int64_t>(here.size()), [&](std::int64_t i) {
-        Node& out = here[static_cast<std::size_t>(i)];
+      nodes[l].resize(nodes[l + 1].size() / 4);
+      for (std::size_t i = 0; i < nodes[l].size(); ++i) {
+        Node& out = nodes[l][i];
         const int z = static_cast<int>(i) / phi, p = static_cast<int>(i) % phi;
-        bool bounded = true;
         for (int c = 0; c < 4; ++c) {
-          const Node& child = below[static_cast<std::size_t>((2 * z + c / 2) * 2 * phi + 2 * p + c % 2)];
-          if (child.count == 0) continue;
-          out.sum += child.sum, out.count += child.count, bounded = bounded && child.cosR > 0;
+          const Node& child =
+              nodes[l + 1][static_cast<std::size_t>((2 * z + c / 2) * 2 * phi + 2 * p + c % 2)];
+          out.sum += child.sum, out.count += child.count;
           for (int ch = 0; ch < 3; ++ch) out.moment[ch] += child.moment[ch];
         }
+      }
+    }
+    // Every node's bounding cone: about its mean direction, out to its widest sample (those of the leaves
+    // below it), a little wider so rounding never takes a crossed node whole.
+    for (int l = 0; l < levels; ++l) {
+      const int phi = 2 * kTopBands << l, f = 1 << (levels - 1 - l);
+      parallelFor(static_cast<std::int64_t>(nodes[l].size()), [&](std::int64_t i) {
+        Node& out = nodes[l][static_cast<std::size_t>(i)];
         const double len = out.sum.length();
-        if (!bounded || !(len > 0)) return;
+        if (!(len > 0)) return;
         out.axis = (1 / len) * out.sum;
-        // The widest of its samples (those of the leaves below it) from the axis.
-        const int f = 1 << (levels - 1 - l);
+        const int z = static_cast<int>(i) / phi, p = static_cast<int>(i) % phi;
         double cosR = 1;
         for (int lz = z * f; lz < (z + 1) * f; ++lz)
           for (int k = start[static_cast<std::size_t>(lz) * binsPhi + p * f];
@@ -306,7 +303,7 @@ struct SampleTree {
   template <class Classify, class WholeNode, class Samples>
   void visit(Classify&& classify, WholeNode&& whole, Samples&& samples) const {
     // Depth first: the top level's nodes and at most three siblings a level wait on the stack.
-    std::array<std::pair<int, int>, 2 * kTopBands * kTopBands + 3 * 12 + 4> stack;
+    std::array<std::pair<int, int>, 2 * kTopBands * kTopBands + 3 * kMaxLevels + 4> stack;
     int top = 0;
     for (int i = static_cast<int>(nodes[0].size()) - 1; i >= 0; --i) stack[top++] = {0, i};
     while (top > 0) {
