@@ -156,8 +156,7 @@ py::dict bakePixels(Pixels pixels, const std::string& projection, const std::str
   EvaluatedBake result;
   {
     py::gil_scoped_release release;
-    probe.emplace(view, kind, policy);
-    result = bakeEvaluated(*probe, options, accuracy);
+    result = bakeBuffer(view, kind, policy, options, accuracy, probe);
   }
   return toDict("", *probe, options, result);
 }

@@ -110,7 +110,8 @@ EvaluatedBake bakeOnGrid(const Probe& probe, const MomentTable& table, double ta
   return out;
 }
 
-EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOptions a) {
+EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOptions a,
+                            const WorkingGrid* prebuilt) {
   if (!(a.maxError >= 0 && a.maxError < 1)) {
     char got[32];
     std::snprintf(got, sizeof got, "%g", a.maxError);
@@ -120,14 +121,15 @@ EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOpt
   const bool evaluating = a.evaluate || a.refit || a.maxError > 0;
   if (a.refit) a.effects |= kDiffuse;
   if (!evaluating) {
-    out.bake = bake(probe, options);
+    out.bake = prebuilt ? prebuilt->bake(probe, options) : bake(probe, options);
     out.count = options.lights;
     applySunAngles(a.sunAngles, nullptr, out.bake.lights);
     out.sunAngles = a.sunAngles == SunAngles::Points ? SunAngles::Points : SunAngles::Spread;
     return out;
   }
   // One working grid for the bakes and the evaluator's samples (no second pass over the pixels).
-  const WorkingGrid grid(probe, options);
+  std::optional<WorkingGrid> built;
+  const WorkingGrid& grid = prebuilt ? *prebuilt : built.emplace(probe, options);
   const EvaluatorOptions evaluatorOptions{a.evaluatorWidth, a.refit, a.sunProfile};
   const Evaluator evaluator = grid.table() ? Evaluator(probe, *grid.table(), a.effects, evaluatorOptions)
                                            : Evaluator(probe, a.effects, evaluatorOptions);
@@ -161,6 +163,16 @@ EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOpt
   out.sunProfile = a.sunProfile;
   out.errors = evaluator.evaluate(out.bake.lights);
   return out;
+}
+
+EvaluatedBake bakeBuffer(ImageView view, ProjectionKind projection, NonFinitePolicy nonFinite,
+                         const BakeOptions& options, const AccuracyOptions& accuracy,
+                         std::optional<Probe>& probe) {
+  probe.emplace(Probe::unchecked(view, projection));
+  PixelReport counts;
+  const WorkingGrid grid(*probe, options, &counts);
+  probe->settle(counts, nonFinite);
+  return bakeEvaluated(*probe, options, accuracy, &grid);
 }
 
 }  // namespace probelights

@@ -58,10 +58,13 @@ BakeResult bake(const Probe& probe, const BakeOptions& options) {
   return result;
 }
 
-WorkingGrid::WorkingGrid(const Probe& probe, const BakeOptions& options) {
-  if (!usesWorkingGrid(options.method)) return;
+WorkingGrid::WorkingGrid(const Probe& probe, const BakeOptions& options, PixelReport* counts) {
+  if (!usesWorkingGrid(options.method)) {
+    if (counts) *counts = probe.countPixels();
+    return;
+  }
   Stopwatch t;
-  table_.emplace(probe, options.resolution.cellSize(probe.width()), options.centroid);
+  table_.emplace(probe, options.resolution.cellSize(probe.width()), options.centroid, counts);
   buildMs_ = t.ms();
 }
 

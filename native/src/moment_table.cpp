@@ -47,11 +47,17 @@ std::string WorkingResolution::toString() const {
   return "?";
 }
 
-MomentTable::MomentTable(const Probe& probe, int cellSize, CentroidWeight centroid)
+MomentTable::MomentTable(const Probe& probe, int cellSize, CentroidWeight centroid, PixelReport* counts)
     : MomentTable(probe.width(), probe.height(), cellSize, centroid) {
   probe.requirePixels("building the working grid");
+  if (counts) rowCounts_.assign(height(), PixelReport{});
   addBand(probe, 0, probe.height());
   finish();
+  if (counts) {
+    *counts = PixelReport{};
+    for (const PixelReport& r : rowCounts_) counts->add(r);
+    rowCounts_ = {};
+  }
 }
 
 MomentTable::MomentTable(int pixelWidth, int pixelHeight, int cellSize, CentroidWeight centroid)
@@ -83,6 +89,8 @@ void MomentTable::addBand(const Probe& band, int y0, int y1) {
   // Each cell row is summed by one thread in a fixed order (the table is bit-identical whatever the thread
   // count).
   sat_.fillRows(y0 / cellSize, (y1 + cellSize - 1) / cellSize, [&](int cy, std::span<Values> out) {
+    // The pixels' check first, on the rows this pass is about to read (they stay in cache for it).
+    if (!rowCounts_.empty()) rowCounts_[cy] = band.countRows(cy * cellSize, std::min(H, (cy + 1) * cellSize));
     thread_local std::vector<PixelSums> sums;
     sums.assign(cellsX, PixelSums{});
     accumulateRows(band, cy * cellSize, std::min(H, (cy + 1) * cellSize), 0, W, cellSize, sums);
@@ -111,6 +119,7 @@ void MomentTable::addLatLongPixels(const Probe& band, int y0, int y1) {
   const bool grey = view.channels < 3;
   using Values = SummedAreaTable<5>::Values;
   sat_.fillRows(y0, y1, [&](int y, std::span<Values> out) {
+    if (!rowCounts_.empty()) rowCounts_[y] = band.countRows(y, y + 1);
     const auto row = band.projection().latLongRow(y);
     const double dw = row.solidAngle, dwCos = dw * row.cosEl, dwSin = dw * row.sinEl;
     const float* p = view.pixel(0, y);

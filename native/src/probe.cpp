@@ -91,89 +91,105 @@ Probe::Probe(Image image, ProjectionChoice projection, NonFinitePolicy nonFinite
   }
 }
 
-void Probe::count() {
-  const int colourChannels = view_.channels < 3 ? 1 : 3;
-  const std::ptrdiff_t step = view_.pixelStep();
-  struct RowCount {
-    long long negative = 0, nonFinite = 0;
-    int firstBadX = -1;
-    double negativeLight = 0, positiveLight = 0;
-  };
+namespace {
+// One row's counts (Probe::countRows adds them up).
+struct RowCount {
+  long long negative = 0, nonFinite = 0;
+  int firstBadX = -1;
+  double negativeLight = 0, positiveLight = 0;
+};
+
+// The counts of row y: negatives (and their light), NaN/Inf (and the first), as PixelReport has them.
+RowCount countRow(const ImageView& view, const Projection& projection, int y) {
+  RowCount c;
+  const int colourChannels = view.channels < 3 ? 1 : 3;
+  const std::ptrdiff_t step = view.pixelStep();
   // Rec. 709 luminance weights (grey: weight 1).
   const double weights[3] = {colourChannels == 1 ? 1.0 : 0.2126, 0.7152, 0.0722};
-  PixelReport found;
-  found = parallelReduce(
-      view_.height, found,
-      [&](std::int64_t i) {
-        RowCount c;
-        const int y = view_.firstRow + static_cast<int>(i);
-        const float* row = view_.pixel(0, y);
-        // Pixel solid angles: one per row for lat-long, per pixel for the disc projections.
-        thread_local std::vector<double> solidAngles;
-        thread_local std::vector<Vec3> directions;
-        const bool perPixel = projection_.kind() != ProjectionKind::LatLong;
-        if (perPixel) {
-          solidAngles.resize(view_.width), directions.resize(view_.width);
-          projection_.rowGeometry(y, 0, view_.width, directions, solidAngles);
-        }
-        const double rowOmega = perPixel ? 1.0 : projection_.latLongRow(y).solidAngle;
-        // One pass with a chain of additions per channel and sign (the validation pass is a whole read of
-        // the image; a single accumulator made it latency-bound, 3.4 ms at 1K): the sum of every sample and
-        // of the negative ones. NaN and Inf make the first sum non-finite (float samples cannot overflow a
-        // double sum); only such a row is walked again to count them and find the first.
-        double all[3] = {0, 0, 0}, negative[3] = {0, 0, 0};
-        long long negatives = 0;
-        auto sumRow = [&]<int C, bool PerPixel>() {
-          const float* p = row;
-          for (int x = 0; x < view_.width; ++x, p += step) {
-            const double w = PerPixel ? solidAngles[x] : 1.0;
-            for (int k = 0; k < C; ++k) {
-              const double v = p[k];
-              all[k] += v * w;
-              negative[k] += v < 0.0 ? v * w : 0.0;
-              negatives += v < 0.0;
-            }
-          }
-        };
-        if (colourChannels == 1)
-          perPixel ? sumRow.template operator()<1, true>() : sumRow.template operator()<1, false>();
-        else
-          perPixel ? sumRow.template operator()<3, true>() : sumRow.template operator()<3, false>();
-        double sum = 0;
-        for (int k = 0; k < colourChannels; ++k) sum += all[k];
-        if (std::isfinite(sum)) {
-          c.negative = negatives;
-          for (int k = 0; k < colourChannels; ++k) {
-            c.negativeLight += weights[k] * negative[k] * rowOmega;
-            c.positiveLight += weights[k] * (all[k] - negative[k]) * rowOmega;
-          }
-          return c;
-        }
-        const float* p = row;
-        for (int x = 0; x < view_.width; ++x, p += step) {
-          const double w = (perPixel ? solidAngles[x] : 1.0) * rowOmega;
-          for (int k = 0; k < colourChannels; ++k) {
-            if (!std::isfinite(p[k])) {
-              if (c.firstBadX < 0) c.firstBadX = x;
-              ++c.nonFinite;
-              continue;
-            }
-            if (p[k] < 0.0f)
-              ++c.negative, c.negativeLight += weights[k] * p[k] * w;
-            else
-              c.positiveLight += weights[k] * p[k] * w;
-          }
-        }
-        return c;
-      },
-      [&](PixelReport& f, RowCount c, std::int64_t i) {
-        f.negativeSamples += c.negative, f.nonFiniteSamples += c.nonFinite;
-        f.negativeLight += c.negativeLight, f.positiveLight += c.positiveLight;
-        if (f.firstNonFiniteY < 0 && c.firstBadX >= 0)
-          f.firstNonFiniteX = c.firstBadX, f.firstNonFiniteY = view_.firstRow + static_cast<int>(i);
-      });
-  report_.add(found);
+  const float* row = view.pixel(0, y);
+  // Pixel solid angles: one per row for lat-long, per pixel for the disc projections.
+  thread_local std::vector<double> solidAngles;
+  thread_local std::vector<Vec3> directions;
+  const bool perPixel = projection.kind() != ProjectionKind::LatLong;
+  if (perPixel) {
+    solidAngles.resize(view.width), directions.resize(view.width);
+    projection.rowGeometry(y, 0, view.width, directions, solidAngles);
+  }
+  const double rowOmega = perPixel ? 1.0 : projection.latLongRow(y).solidAngle;
+  // One pass with a chain of additions per channel and sign (the validation pass is a whole read of the
+  // image; a single accumulator made it latency-bound, 3.4 ms at 1K): the sum of every sample and of the
+  // negative ones. NaN and Inf make the first sum non-finite (float samples cannot overflow a double sum);
+  // only such a row is walked again to count them and find the first.
+  double all[3] = {0, 0, 0}, negative[3] = {0, 0, 0};
+  long long negatives = 0;
+  auto sumRow = [&]<int C, bool PerPixel>() {
+    const float* p = row;
+    for (int x = 0; x < view.width; ++x, p += step) {
+      const double w = PerPixel ? solidAngles[x] : 1.0;
+      for (int k = 0; k < C; ++k) {
+        const double v = p[k];
+        all[k] += v * w;
+        negative[k] += v < 0.0 ? v * w : 0.0;
+        negatives += v < 0.0;
+      }
+    }
+  };
+  if (colourChannels == 1)
+    perPixel ? sumRow.template operator()<1, true>() : sumRow.template operator()<1, false>();
+  else
+    perPixel ? sumRow.template operator()<3, true>() : sumRow.template operator()<3, false>();
+  double sum = 0;
+  for (int k = 0; k < colourChannels; ++k) sum += all[k];
+  if (std::isfinite(sum)) {
+    c.negative = negatives;
+    for (int k = 0; k < colourChannels; ++k) {
+      c.negativeLight += weights[k] * negative[k] * rowOmega;
+      c.positiveLight += weights[k] * (all[k] - negative[k]) * rowOmega;
+    }
+    return c;
+  }
+  const float* p = row;
+  for (int x = 0; x < view.width; ++x, p += step) {
+    const double w = (perPixel ? solidAngles[x] : 1.0) * rowOmega;
+    for (int k = 0; k < colourChannels; ++k) {
+      if (!std::isfinite(p[k])) {
+        if (c.firstBadX < 0) c.firstBadX = x;
+        ++c.nonFinite;
+        continue;
+      }
+      if (p[k] < 0.0f)
+        ++c.negative, c.negativeLight += weights[k] * p[k] * w;
+      else
+        c.positiveLight += weights[k] * p[k] * w;
+    }
+  }
+  return c;
 }
+
+void addRow(PixelReport& f, const RowCount& c, int y) {
+  f.negativeSamples += c.negative, f.nonFiniteSamples += c.nonFinite;
+  f.negativeLight += c.negativeLight, f.positiveLight += c.positiveLight;
+  if (f.firstNonFiniteY < 0 && c.firstBadX >= 0) f.firstNonFiniteX = c.firstBadX, f.firstNonFiniteY = y;
+}
+
+}  // namespace
+
+PixelReport Probe::countRows(int y0, int y1) const {
+  PixelReport found;
+  for (int y = y0; y < y1; ++y) addRow(found, countRow(view_, projection_, y), y);
+  return found;
+}
+
+PixelReport Probe::countPixels() const {
+  return parallelReduce(
+      view_.height, PixelReport{},
+      [&](std::int64_t i) { return countRow(view_, projection_, view_.firstRow + static_cast<int>(i)); },
+      [&](PixelReport& f, const RowCount& c, std::int64_t i) {
+        addRow(f, c, view_.firstRow + static_cast<int>(i));
+      });
+}
+
+void Probe::count() { report_.add(countPixels()); }
 
 void Probe::validate(NonFinitePolicy nonFinite) {
   count();
@@ -224,6 +240,18 @@ Probe Probe::band(const ImageView& view, const Projection& projection) {
   Probe probe(view, projection);
   probe.count();
   return probe;
+}
+
+Probe Probe::unchecked(ImageView view, ProjectionKind projection) {
+  checkShape(view, "buffer");
+  if (view.firstRow != 0)
+    throw Error("probe buffer: a band of a taller image (firstRow) goes to Probe::band");
+  return Probe(view, Projection(projection, view.width, view.height));
+}
+
+void Probe::settle(const PixelReport& counts, NonFinitePolicy nonFinite) {
+  report_.add(counts);
+  report_.settle(nonFinite);
 }
 
 Probe Probe::withoutPixels(ProjectionKind projection, int width, int height, PixelReport report) {

@@ -12,7 +12,9 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <optional>
 
+#include "probelights/accuracy.h"
 #include "probelights/bake.h"
 #include "probelights/error.h"
 #include "test_probes.h"
@@ -200,6 +202,64 @@ TEST(Probe, NonFiniteSamplesAreAnErrorNamingHowManyAndWhere) {
   for (const Light& l : r.lights)
     for (double c : l.rgb) EXPECT_TRUE(std::isfinite(c));
   EXPECT_TRUE(std::isfinite(r.totalRgb[0]) && std::isfinite(r.totalRgb[1]));
+}
+
+TEST(Probe, BufferCheckedInTheGridsPassGivesWhatACheckedProbeGives) {
+  // bakeBuffer counts the pixels (negatives, NaN/Inf) in the working grid's pass instead of a pass of its
+  // own: the same counts, notes, errors and lights as Probe(view) + bakeEvaluated, for every cell size,
+  // projection, channel count and method, with or without the evaluator.
+  const int W = 64, H = 32;
+  std::vector<float> rgba(W * H * 4);
+  for (int i = 0; i < W * H; ++i)
+    for (int k = 0; k < 4; ++k) rgba[4 * i + k] = 0.05f + static_cast<float>((i * 7 + k * 3) % 23) * 0.2f;
+  rgba[4 * (5 * W + 9) + 0] = 400.0f;                                      // a sun
+  rgba[4 * (3 * W + 1) + 1] = -0.5f, rgba[4 * (20 * W + 40) + 2] = -2.0f;  // lossy ringing
+  rgba[4 * (17 * W + 33) + 0] = std::numeric_limits<float>::quiet_NaN();
+  rgba[4 * (26 * W + 3) + 2] = -std::numeric_limits<float>::infinity();
+  std::vector<float> square(32 * 32 * 4);
+  std::copy(rgba.begin(), rgba.begin() + static_cast<std::ptrdiff_t>(square.size()), square.begin());
+  square[4 * (10 * 32 + 12) + 1] = std::numeric_limits<float>::quiet_NaN();  // within the ball's disc
+  struct Case {
+    ImageView view;
+    ProjectionKind kind;
+  };
+  const std::vector<Case> cases{{ImageView{rgba.data(), W, H, 4}, ProjectionKind::LatLong},
+                                {ImageView{rgba.data(), W, H, 1, W * 4, 4}, ProjectionKind::LatLong},
+                                {ImageView{square.data(), 32, 32, 4}, ProjectionKind::MirrorBall}};
+  for (const Case& c : cases)
+    for (const char* resolution : {"full", "16"})
+      for (Method method : {Method::Variance, Method::MedianCut, Method::SphericalHarmonics})
+        for (bool evaluate : {false, true}) {
+          SCOPED_TRACE(std::string(resolution) + " method " + std::to_string(static_cast<int>(method)) +
+                       (evaluate ? " evaluated" : "") + " channels " + std::to_string(c.view.channels));
+          BakeOptions o;
+          o.lights = 6, o.method = method, o.resolution = WorkingResolution::parse(resolution);
+          AccuracyOptions a;
+          a.evaluate = evaluate, a.evaluatorWidth = 32;
+          const Probe checked(c.view, c.kind, NonFinitePolicy::Zero);
+          const EvaluatedBake expected = bakeEvaluated(checked, o, a);
+          std::optional<Probe> probe;
+          const EvaluatedBake got = bakeBuffer(c.view, c.kind, NonFinitePolicy::Zero, o, a, probe);
+          ASSERT_TRUE(probe);
+          const PixelReport &want = checked.report(), &have = probe->report();
+          EXPECT_EQ(have.negativeSamples, want.negativeSamples);
+          EXPECT_EQ(have.nonFiniteSamples, want.nonFiniteSamples);
+          EXPECT_EQ(have.firstNonFiniteX, want.firstNonFiniteX);
+          EXPECT_EQ(have.firstNonFiniteY, want.firstNonFiniteY);
+          EXPECT_NEAR(have.negativeLight, want.negativeLight, 1e-12 * std::abs(want.negativeLight));
+          EXPECT_NEAR(have.positiveLight, want.positiveLight, 1e-12 * want.positiveLight);
+          EXPECT_EQ(have.notes, want.notes);
+          ASSERT_EQ(got.bake.lights.size(), expected.bake.lights.size());
+          for (std::size_t i = 0; i < got.bake.lights.size(); ++i) {
+            EXPECT_EQ(got.bake.lights[i].rgb, expected.bake.lights[i].rgb);
+            EXPECT_EQ(got.bake.lights[i].direction.x, expected.bake.lights[i].direction.x);
+          }
+          if (evaluate) EXPECT_EQ(got.errors.diffuse, expected.errors.diffuse);
+          // Refused as the checking constructor refuses, with its message.
+          std::string refused = expectError([&] { Probe p(c.view, c.kind); });
+          EXPECT_EQ(expectError([&] { bakeBuffer(c.view, c.kind, NonFinitePolicy::Error, o, a, probe); }),
+                    refused);
+        }
 }
 
 TEST(Probe, BadInputsOneLineErrors) {

@@ -2,6 +2,7 @@
 // and the auto count (the fewest lights that meet a tolerance). What the CLI's bake and the add-on run.
 #pragma once
 
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -64,7 +65,17 @@ struct EvaluatedBake {
   std::vector<std::pair<int, double>> tried;  // autoCount: (count, worst error) of every count tried
 };
 
-EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOptions accuracy);
+// `grid`: the probe's working grid for these options if the caller has built it.
+EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOptions accuracy,
+                            const WorkingGrid* grid = nullptr);
+
+// bakeEvaluated on a caller's buffer (Probe(view, projection, nonFinite)), its pixels checked in the working
+// grid's pass rather than a pass of their own (Probe::unchecked; at 8K the own pass read 537 MB of Blender's
+// RGBA again): the same lights, notes and errors, the same Error for NaN/Inf before any light is made.
+// `probe` receives the probe (its report's notes), set also when the check refuses it.
+EvaluatedBake bakeBuffer(ImageView view, ProjectionKind projection, NonFinitePolicy nonFinite,
+                         const BakeOptions& options, const AccuracyOptions& accuracy,
+                         std::optional<Probe>& probe);
 
 // Whether bakeEvaluated needs nothing of the probe but its working grid: a grid method, and no evaluation,
 // refit or tolerance. Then a file can be read band by band into the grid (grid_load.h) and baked with

@@ -72,7 +72,8 @@ inline bool usesWorkingGrid(Method method) { return method != Method::SphericalH
 // method, whose bakes then go the usual way.
 class WorkingGrid {
  public:
-  WorkingGrid(const Probe& probe, const BakeOptions& options);
+  // `counts`: also check the pixels (Probe::unchecked), in the table's pass when there is a table.
+  WorkingGrid(const Probe& probe, const BakeOptions& options, PixelReport* counts = nullptr);
   const MomentTable* table() const { return table_ ? &*table_ : nullptr; }
   // bake(probe, table, options) with timings.tablesMs = the grid's build time (what one bake costs), or
   // bake(probe, options) without a grid. options.resolution and centroid must be the grid's.

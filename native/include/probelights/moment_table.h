@@ -55,7 +55,10 @@ class MomentTable {
  public:
   // `centroid`: the lights' centroid weighting the cells' sums serve (CentroidWeight::Energy2 also keeps each
   // cell's Y^2-weighted sums: 32 more bytes a cell).
-  MomentTable(const Probe& probe, int cellSize, CentroidWeight centroid = CentroidWeight::Energy);
+  // `counts`: the pixels' check (Probe::countRows) done in the same pass, row by row just before the rows are
+  // summed (Probe::unchecked: one read of the image instead of two), written there.
+  MomentTable(const Probe& probe, int cellSize, CentroidWeight centroid = CentroidWeight::Energy,
+              PixelReport* counts = nullptr);
 
   // The same table built band by band (grid_load.h reads a probe this way, never holding it whole): a table
   // for a pixelWidth x pixelHeight probe; addBand() with every band of pixel rows [y0, y1) once (y0 and y1 on
@@ -110,6 +113,7 @@ class MomentTable {
   KeptArray<CellSecond> second_;
   std::vector<PixelSums> rowTotals_;  // per cell row, while the table is built
   std::vector<long long> rowLitCells_;
+  std::vector<PixelReport> rowCounts_;  // per cell row, when the build also checks the pixels
 };
 
 }  // namespace probelights

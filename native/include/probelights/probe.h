@@ -56,6 +56,16 @@ class Probe {
   // working grid band by band (grid_load.h): pixel() and radiance() take the whole probe's row numbers. Its
   // report counts the band's samples and is not settled (no notes, no error): the caller settles their sum.
   static Probe band(const ImageView& view, const Projection& projection);
+  // A caller's buffer whose pixels are not checked yet: the first pass that reads them all checks them
+  // instead of a pass of its own (the working grid's: WorkingGrid's `counts`, bakeBuffer in accuracy.h),
+  // and settle() then adds what it counted (countRows) and refuses or notes as the checking constructor
+  // would. Nothing but that pass may read its pixels before settle() has accepted them.
+  static Probe unchecked(ImageView view, ProjectionKind projection);
+  void settle(const PixelReport& counts, NonFinitePolicy nonFinite);
+  // The counts of rows [y0, y1) (in order, on the calling thread), and of every row (in parallel); the same
+  // numbers whoever adds them, row by row.
+  PixelReport countRows(int y0, int y1) const;
+  PixelReport countPixels() const;
   // A probe whose pixels were not kept (grid_load.h read it band by band into its working grid): its size,
   // projection and report. Stages that read pixels refuse it with an Error (requirePixels).
   static Probe withoutPixels(ProjectionKind projection, int width, int height, PixelReport report);
