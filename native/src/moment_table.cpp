@@ -89,11 +89,11 @@ void MomentTable::addBand(const Probe& band, int y0, int y1) {
   // Each cell row is summed by one thread in a fixed order (the table is bit-identical whatever the thread
   // count).
   sat_.fillRows(y0 / cellSize, (y1 + cellSize - 1) / cellSize, [&](int cy, std::span<Values> out) {
-    // The pixels' check first, on the rows this pass is about to read (they stay in cache for it).
-    if (!rowCounts_.empty()) rowCounts_[cy] = band.countRows(cy * cellSize, std::min(H, (cy + 1) * cellSize));
     thread_local std::vector<PixelSums> sums;
     sums.assign(cellsX, PixelSums{});
-    accumulateRows(band, cy * cellSize, std::min(H, (cy + 1) * cellSize), 0, W, cellSize, sums);
+    const int rows0 = cy * cellSize, rows1 = std::min(H, (cy + 1) * cellSize);
+    bool odd = true;
+    accumulateRows(band, rows0, rows1, 0, W, cellSize, sums, true, rowCounts_.empty() ? nullptr : &odd);
     PixelSums total;
     long long litCells = 0;
     for (int cx = 0; cx < cellsX; ++cx) {
@@ -107,6 +107,14 @@ void MomentTable::addBand(const Probe& band, int y0, int y1) {
     }
     rowTotals_[cy] = total;
     rowLitCells_[cy] = litCells;
+    // The pixels' check, when asked: rows where the sums met a negative, NaN or Inf sample are counted
+    // (still in cache); in the others there is nothing to count, and their light is the energy just summed.
+    if (!rowCounts_.empty()) {
+      if (odd)
+        rowCounts_[cy] = band.countRows(rows0, rows1);
+      else
+        rowCounts_[cy].positiveLight = total.energy;
+    }
   });
 }
 

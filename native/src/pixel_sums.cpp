@@ -17,8 +17,9 @@ PixelSums& PixelSums::operator+=(const PixelSums& o) {
 }
 
 void accumulateRows(const Probe& probe, int y0, int y1, int x0, int x1, int cellSize,
-                    std::span<PixelSums> cells, bool squares) {
+                    std::span<PixelSums> cells, bool squares, bool* oddSamples) {
   const Projection& projection = probe.projection();
+  if (oddSamples) *oddSamples = true;  // unless the lat-long loop below looked
   if (projection.kind() == ProjectionKind::LatLong) {
     const ImageView& view = probe.view();
     const std::ptrdiff_t step = view.pixelStep();
@@ -30,8 +31,11 @@ void accumulateRows(const Probe& probe, int y0, int y1, int x0, int x1, int cell
     constexpr double kMax = 3.4028234663852886e38;  // FLT_MAX: Probe::finite's bounds
     const D2 zero = {0, 0}, lo = {-kMax, -kMax}, hi = {kMax, kMax};
     const D2 wR = {0.2126, 0.2126}, wG = {0.7152, 0.7152}, wB = {0.0722, 0.0722};
-    auto finite2 = [&](float a, float b) {
+    // `odd` collects, when asked, whether any sample read was negative, NaN or Inf.
+    I2 odd = {0, 0};
+    auto finite2 = [&]<bool Check>(float a, float b) {
       const D2 v = {a, b};
+      if constexpr (Check) odd |= ~((v >= zero) & (v <= hi));
       return ((v >= lo) & (v <= hi)) ? v : zero;
     };
     auto load2 = [](const double* v) {
@@ -39,7 +43,7 @@ void accumulateRows(const Probe& probe, int y0, int y1, int x0, int x1, int cell
       __builtin_memcpy(&d, v, sizeof d);
       return d;
     };
-    auto cellsOfRow = [&]<bool Grey, bool Squares>(int y) {
+    auto cellsOfRow = [&]<bool Grey, bool Squares, bool Check>(int y) {
       const auto row = projection.latLongRow(y);
       const double dw = row.solidAngle;
       const float* p = view.pixel(x0, y);
@@ -58,13 +62,16 @@ void accumulateRows(const Probe& probe, int y0, int y1, int x0, int x1, int cell
           lit -= Y > zero;
         };
         for (; x + 1 < end; x += 2, p += 2 * step) {
-          const D2 Rs = finite2(p[0], p[step]);
-          const D2 Gs = Grey ? Rs : finite2(p[1], p[step + 1]), Bs = Grey ? Rs : finite2(p[2], p[step + 2]);
+          const D2 Rs = finite2.template operator()<Check>(p[0], p[step]);
+          const D2 Gs = Grey ? Rs : finite2.template operator()<Check>(p[1], p[step + 1]),
+                   Bs = Grey ? Rs : finite2.template operator()<Check>(p[2], p[step + 2]);
           add(Rs, Gs, Bs, load2(row.cosPhi + x), load2(row.sinPhi + x));
         }
         if (x < end) {  // an odd pixel left: the even lane takes it
           const double Rs = Probe::finite(p[0]), Gs = Grey ? Rs : Probe::finite(p[1]),
                        Bs = Grey ? Rs : Probe::finite(p[2]);
+          if constexpr (Check)
+            for (int k = 0; k < (Grey ? 1 : 3); ++k) odd[0] |= !(p[k] >= 0.0f && p[k] <= 3.4028234e38f);
           add(D2{Rs, 0}, D2{Gs, 0}, D2{Bs, 0}, D2{row.cosPhi[x], 0}, D2{row.sinPhi[x], 0});
           ++x, p += step;
         }
@@ -88,13 +95,24 @@ void accumulateRows(const Probe& probe, int y0, int y1, int x0, int x1, int cell
         const char* next = reinterpret_cast<const char*>(view.pixel(x0, y + 1));
         for (std::ptrdiff_t b = 0; b < segmentBytes; b += 64) __builtin_prefetch(next + b);
       }
-      if (view.channels < 3)
-        squares ? cellsOfRow.template operator()<true, true>(y)
-                : cellsOfRow.template operator()<true, false>(y);
-      else
-        squares ? cellsOfRow.template operator()<false, true>(y)
-                : cellsOfRow.template operator()<false, false>(y);
+      const bool check = oddSamples != nullptr;
+      if (view.channels < 3) {
+        if (squares)
+          check ? cellsOfRow.template operator()<true, true, true>(y)
+                : cellsOfRow.template operator()<true, true, false>(y);
+        else
+          check ? cellsOfRow.template operator()<true, false, true>(y)
+                : cellsOfRow.template operator()<true, false, false>(y);
+      } else {
+        if (squares)
+          check ? cellsOfRow.template operator()<false, true, true>(y)
+                : cellsOfRow.template operator()<false, true, false>(y);
+        else
+          check ? cellsOfRow.template operator()<false, false, true>(y)
+                : cellsOfRow.template operator()<false, false, false>(y);
+      }
     }
+    if (oddSamples) *oddSamples = (odd[0] | odd[1]) != 0;
     return;
   }
   // Ball and angular maps: per-pixel directions and solid angles.

@@ -254,7 +254,9 @@ TEST(Probe, BufferCheckedInTheGridsPassGivesWhatACheckedProbeGives) {
             EXPECT_EQ(got.bake.lights[i].rgb, expected.bake.lights[i].rgb);
             EXPECT_EQ(got.bake.lights[i].direction.x, expected.bake.lights[i].direction.x);
           }
-          if (evaluate) EXPECT_EQ(got.errors.diffuse, expected.errors.diffuse);
+          if (evaluate) {
+            EXPECT_EQ(got.errors.diffuse, expected.errors.diffuse);
+          }
           // Refused as the checking constructor refuses, with its message.
           std::string refused = expectError([&] { Probe p(c.view, c.kind); });
           EXPECT_EQ(expectError([&] { bakeBuffer(c.view, c.kind, NonFinitePolicy::Error, o, a, probe); }),

@@ -25,9 +25,11 @@ struct PixelSums {
 // Adds pixels [x0, x1) of rows [y0, y1) to cells: pixel x goes to cells[(x - x0) / cellSize]. Row by row,
 // each row's pixels summed per cell with the row's weights (dOmega, cos el, sin el) applied once per cell; a
 // lat-long pixel's cos phi and sin phi come from the row's tables. squares = false leaves energy2 and moment2
-// at 0 (only the energy2 centroid needs them).
+// at 0 (only the energy2 centroid needs them). `oddSamples` (if given): false when the loop saw that every
+// sample it read is finite and not negative (it looks in lat-long probes; otherwise true), so a pixel check
+// (Probe::countRows) has nothing to find there but their light.
 void accumulateRows(const Probe& probe, int y0, int y1, int x0, int x1, int cellSize,
-                    std::span<PixelSums> cells, bool squares = true);
+                    std::span<PixelSums> cells, bool squares = true, bool* oddSamples = nullptr);
 
 // The sums over a rectangle of pixels.
 PixelSums sumPixels(const Probe& probe, const Rect& pixels, bool squares = true);
