@@ -10,10 +10,17 @@ namespace {
 
 GridProbe loadWhole(const std::string& path, const ProbeOptions& options, int cellSize,
                     CentroidWeight centroid) {
-  Probe probe = Probe::load(path, options);
+  // The pixels are checked in the table's pass (Probe::unchecked): one pass over them instead of two.
+  Probe probe = Probe::loadUnchecked(path, options);
   Stopwatch t;
-  MomentTable table(probe, cellSize, centroid);
+  PixelReport counts;
+  MomentTable table(probe, cellSize, centroid, &counts);
   const double ms = t.ms();
+  try {
+    probe.settle(counts, options.nonFinite);
+  } catch (const Error& e) {
+    throw Error("probe '" + path + "': " + e.what());
+  }
   return {std::move(probe), std::move(table), ms};
 }
 

@@ -128,4 +128,8 @@ Probe Probe::load(const std::string& path, const ProbeOptions& options) {
   return Probe(readImage(path), options.projection, options.nonFinite, path);
 }
 
+Probe Probe::loadUnchecked(const std::string& path, const ProbeOptions& options) {
+  return Probe(readImage(path), options.projection, path);
+}
+
 }  // namespace probelights

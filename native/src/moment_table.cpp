@@ -127,13 +127,14 @@ void MomentTable::addLatLongPixels(const Probe& band, int y0, int y1) {
   const bool grey = view.channels < 3;
   using Values = SummedAreaTable<5>::Values;
   sat_.fillRows(y0, y1, [&](int y, std::span<Values> out) {
-    if (!rowCounts_.empty()) rowCounts_[y] = band.countRows(y, y + 1);
     const auto row = band.projection().latLongRow(y);
     const double dw = row.solidAngle, dwCos = dw * row.cosEl, dwSin = dw * row.sinEl;
     const float* p = view.pixel(0, y);
     double r = 0, g = 0, b = 0, energy = 0;
     long long lit = 0;
+    bool odd = false;  // a negative, NaN or Inf sample in the row (for the pixels' check)
     for (int x = 0; x < pixelWidth_; ++x, p += step) {
+      for (int k = 0; k < (grey ? 1 : 3); ++k) odd |= !(p[k] >= 0.0f && p[k] <= 3.4028234e38f);
       const double Rs = Probe::finite(p[0]), Gs = grey ? Rs : Probe::finite(p[1]),
                    Bs = grey ? Rs : Probe::finite(p[2]);
       const double R = Rs > 0 ? Rs : 0.0, G = Gs > 0 ? Gs : 0.0, B = Bs > 0 ? Bs : 0.0;
@@ -154,6 +155,12 @@ void MomentTable::addLatLongPixels(const Probe& band, int y0, int y1) {
     total.energy = energy;
     rowTotals_[y] = total;
     rowLitCells_[y] = lit;
+    if (!rowCounts_.empty()) {  // as in addBand: only a row with odd samples is counted
+      if (odd)
+        rowCounts_[y] = band.countRows(y, y + 1);
+      else
+        rowCounts_[y].positiveLight = energy;
+    }
   });
 }
 

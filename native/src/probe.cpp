@@ -80,16 +80,19 @@ Probe::Probe(ImageView view, ProjectionKind projection, NonFinitePolicy nonFinit
 }
 
 Probe::Probe(Image image, ProjectionChoice projection, NonFinitePolicy nonFinite, const std::string& name)
-    : owned_(std::make_shared<const Image>(std::move(image))),
-      view_((checkShape(owned_->view(), "'" + name + "'"), owned_->view())),
-      projection_(resolveProjection(projection, view_.width, view_.height, "'" + name + "'", report_.notes),
-                  view_.width, view_.height) {
+    : Probe(std::move(image), projection, name) {
   try {
     validate(nonFinite);
   } catch (const Error& e) {
     throw Error("probe '" + name + "': " + e.what());
   }
 }
+
+Probe::Probe(Image image, ProjectionChoice projection, const std::string& name)
+    : owned_(std::make_shared<const Image>(std::move(image))),
+      view_((checkShape(owned_->view(), "'" + name + "'"), owned_->view())),
+      projection_(resolveProjection(projection, view_.width, view_.height, "'" + name + "'", report_.notes),
+                  view_.width, view_.height) {}
 
 namespace {
 // One row's counts (Probe::countRows adds them up).

@@ -126,36 +126,43 @@ TEST(GridLoad, NonFiniteSamplesGiveTheWholeLoadsErrorOrReport) {
   px[(51 * W + 3) * 3 + 2] = -2.0f;
   const fs::path file = dir / "bad.exr";
   writeImage(file, W, H, 3, px);
-  const WorkingResolution res{WorkingResolution::Mode::Width, 32};
-  std::string wholeError, bandError;
-  try {
-    Probe::load(file.string());
-  } catch (const Error& e) {
-    wholeError = e.what();
-  }
-  try {
-    loadGrid(file.string(), {}, at(res), 8);
-  } catch (const Error& e) {
-    bandError = e.what();
-  }
-  EXPECT_NE(wholeError.find("2 NaN/Inf samples, first at pixel (5, 20)"), std::string::npos) << wholeError;
-  EXPECT_EQ(bandError, wholeError);
+  // Band by band (32 wide), and whole at full resolution with the check in the table's pass: the same.
+  for (const WorkingResolution res : {WorkingResolution{WorkingResolution::Mode::Width, 32},
+                                      WorkingResolution{WorkingResolution::Mode::Full, 0}}) {
+    SCOPED_TRACE(res.toString());
+    std::string wholeError, bandError;
+    try {
+      Probe::load(file.string());
+    } catch (const Error& e) {
+      wholeError = e.what();
+    }
+    try {
+      loadGrid(file.string(), {}, at(res), 8);
+    } catch (const Error& e) {
+      bandError = e.what();
+    }
+    EXPECT_NE(wholeError.find("2 NaN/Inf samples, first at pixel (5, 20)"), std::string::npos) << wholeError;
+    EXPECT_EQ(bandError, wholeError);
 
-  ProbeOptions zero;
-  zero.nonFinite = NonFinitePolicy::Zero;
-  const Probe whole = Probe::load(file.string(), zero);
-  const GridProbe g = loadGrid(file.string(), zero, at(res), 8);
-  EXPECT_EQ(g.probe.report().notes, whole.report().notes);
-  EXPECT_EQ(g.probe.report().nonFiniteSamples, 2);
-  EXPECT_EQ(g.probe.report().negativeSamples, 1);
-  BakeOptions o;
-  o.lights = 12;
-  o.resolution = res;
-  expectSameBake(bake(whole, o), bakeOnGrid(g, o), "zeroed");
+    ProbeOptions zero;
+    zero.nonFinite = NonFinitePolicy::Zero;
+    const Probe whole = Probe::load(file.string(), zero);
+    const GridProbe g = loadGrid(file.string(), zero, at(res), 8);
+    EXPECT_EQ(g.probe.report().notes, whole.report().notes);
+    EXPECT_EQ(g.probe.report().nonFiniteSamples, 2);
+    EXPECT_EQ(g.probe.report().negativeSamples, 1);
+    BakeOptions o;
+    o.lights = 12;
+    o.resolution = res;
+    expectSameBake(bake(whole, o), bakeOnGrid(g, o), "zeroed");
+    EXPECT_NEAR(g.probe.report().negativeLight, whole.report().negativeLight, 1e-12);
+    EXPECT_NEAR(g.probe.report().positiveLight, whole.report().positiveLight,
+                1e-12 * whole.report().positiveLight);
+  }
 
   std::string missing;
   try {
-    loadGrid((dir / "nothing.exr").string(), {}, at(res));
+    loadGrid((dir / "nothing.exr").string(), {}, at({WorkingResolution::Mode::Width, 32}));
   } catch (const Error& e) {
     missing = e.what();
   }
