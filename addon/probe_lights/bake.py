@@ -16,7 +16,7 @@ from . import cycles_settings, eevee_settings, native, render_cost
 from .conversion import sun_profile
 from .errors import ProbeError
 from .light_objects import baked_worlds, make_lights, remove_collection_if_empty, remove_lights, world_collection
-from .properties import NATIVE_SUN_ANGLES
+from .properties import NATIVE_SUN_ANGLES, both_cuts, cut_method
 from .world_graph import find_probe
 from .world_image import image_pixels, render_world
 from .world_mix import insert_mix, remove_mix
@@ -65,7 +65,7 @@ def world_probe(world, rendered=None):
 
 
 def _native_warning(note):
-    return not note.startswith("auto count:")
+    return not note.startswith(("auto count:", "both cuts fitted:"))
 
 
 def bake_world(context, settings, progress=lambda fraction: None, rendered=None, render_ms=0.0):
@@ -88,13 +88,14 @@ def bake_world(context, settings, progress=lambda fraction: None, rendered=None,
     try:
         # With the refit, lights start at their regions' energy^2 centroids (towards the brightest light): with
         # directions and colours refit, shadows came out closer on 15 probes of 15 at 16 suns (README).
-        baked = native.bake(pixels, projection=projection, method=settings.method, lights=settings.count,
+        baked = native.bake(pixels, projection=projection, method=cut_method(settings.method), lights=settings.count,
                             centroid="energy2" if refit else "energy",
                             resolution=settings.resolution, evaluate=True, effects="diffuse,shadow",
                             evaluator_width=512, refit=refit, move_directions=refit,
                             max_error=max_error, nonfinite=settings.non_finite,
                             sun_angles=NATIVE_SUN_ANGLES[settings.shadows] if settings.light_type == "SUN" else "points",
-                            sun_profile=sun_profile(bpy.app.version))
+                            sun_profile=sun_profile(bpy.app.version),
+                            both_cuts=both_cuts(settings.method, settings.count, max_error > 0))
     except ProbeError as e:
         message = str(e)
         if "; to read them as 0" in message:  # the module names the CLI's option; here it is the panel's

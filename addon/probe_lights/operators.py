@@ -9,7 +9,7 @@ from . import cycles_settings, eevee_settings, native
 from .bake import RENDER_WIDTH, bake_world, needs_render, report_lines, restore_world, world_probe
 from .conversion import sun_profile
 from .errors import ProbeError
-from .properties import SETTING_NAMES, bake_settings
+from .properties import SETTING_NAMES, bake_settings, cut_method
 from .world_image import WorldRender
 
 TRADEOFF_COUNTS = [4, 8, 16, 32, 64, 128, 256]
@@ -113,10 +113,10 @@ class PROBE_LIGHTS_OT_tradeoff(bpy.types.Operator):
         self._probe = world_probe(context.scene.world)
         self._probe_ms = 1000 * (time.perf_counter() - start)
         self._lamp_ms = settings.last_ms_per_lamp or LAMP_MS
-        self._method = settings.method
+        self._method = cut_method(settings.method)  # the tradeoff measures one cut a count
         self._done = 0
         settings.tradeoff.clear()
-        settings.tradeoff_method = settings.method
+        settings.tradeoff_method = self._method
         settings.tradeoff_source = self._probe[2]
 
     def _step(self, context):

@@ -47,6 +47,7 @@ BakeArgs parseBakeArgs(const std::vector<std::string>& argv) {
       flag({"--refit"}, [&] { acc.refit = true; }),
       flag({"--refit-directions"}, [&] { acc.refit = acc.moveDirections = true; }),
       flag({"--evaluate"}, [&] { acc.evaluate = true; }),
+      flag({"--both-cuts"}, [&] { acc.bothCuts = true; }),
   };
   addProbeOptions(table, a.probeOptions);
   const std::vector<std::string> probes = parseOptions(argv, table);
@@ -63,17 +64,15 @@ BakeArgs parseBakeArgs(const std::vector<std::string>& argv) {
   return a;
 }
 
-void printSummary(const BakeArgs& a, const Probe& probe, const BakeOptions& options, const EvaluatedBake& ev,
-                  double loadMs) {
+void printSummary(const BakeArgs& a, const Probe& probe, const EvaluatedBake& ev, double loadMs) {
   const BakeResult& r = ev.bake;
   std::printf("probe      %s  %dx%d %s\n", a.probe.c_str(), probe.width(), probe.height(),
               toString(probe.projection().kind()).c_str());
   for (const auto& note : probe.report().notes) std::printf("note       %s\n", note.c_str());
   for (const auto& note : r.notes) std::printf("note       %s\n", note.c_str());
-  std::printf("method     %s, %zu lights, cuts on a %dx%d grid (cell %d px)\n",
-              toString(options.method).c_str(), r.lights.size(),
-              (probe.width() + r.cellSize - 1) / r.cellSize, (probe.height() + r.cellSize - 1) / r.cellSize,
-              r.cellSize);
+  std::printf("method     %s, %zu lights, cuts on a %dx%d grid (cell %d px)\n", toString(ev.cut).c_str(),
+              r.lights.size(), (probe.width() + r.cellSize - 1) / r.cellSize,
+              (probe.height() + r.cellSize - 1) / r.cellSize, r.cellSize);
   std::printf(
       "\n   #  direction (x, y, z)          rgb (W/m^2)                      share  radius  angle (deg)\n");
   for (std::size_t i = 0; i < r.lights.size(); ++i) {
@@ -131,7 +130,7 @@ int bakeCommand(const std::vector<std::string>& argv) {
     if (a.output == "-") a.quiet = true;
   }
   if (!a.preview.empty()) writePreview(probe, done.bake, a.preview);
-  if (!a.quiet) printSummary(a, probe, a.bake, done, loadMs);
+  if (!a.quiet) printSummary(a, probe, done, loadMs);
   return 0;
 }
 

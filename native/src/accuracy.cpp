@@ -91,12 +91,13 @@ AutoCountResult autoCount(const Probe& probe, const Evaluator& evaluator, BakeOp
 }
 
 bool bakesOnGridAlone(const BakeOptions& options, const AccuracyOptions& a) {
-  return usesWorkingGrid(options.method) && !a.evaluate && !a.refit && !(a.maxError > 0);
+  return usesWorkingGrid(options.method) && !a.evaluate && !a.refit && !(a.maxError > 0) && !a.bothCuts;
 }
 
 EvaluatedBake bakeOnGrid(const Probe& probe, const MomentTable& table, double tablesMs,
                          const BakeOptions& options, SunAngles angles) {
   EvaluatedBake out;
+  out.cut = options.method;
   out.bake = bake(probe, table, options);
   applySunAngles(angles, nullptr, out.bake.lights);
   out.sunAngles = angles == SunAngles::Points ? SunAngles::Points : SunAngles::Spread;
@@ -118,7 +119,11 @@ EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOpt
     throw Error(std::string("the error tolerance is a fraction in (0, 1), e.g. 0.01 for 1 %; got ") + got);
   }
   EvaluatedBake out;
-  const bool evaluating = a.evaluate || a.refit || a.maxError > 0;
+  out.cut = options.method;
+  if (a.bothCuts && options.method != Method::Variance && options.method != Method::MedianCut)
+    throw Error("both cuts are variance and median cut: bake with one of them");
+  if (a.bothCuts && a.maxError > 0) throw Error("both cuts take a light count, not an error tolerance");
+  const bool evaluating = a.evaluate || a.refit || a.maxError > 0 || a.bothCuts;
   if (a.refit) a.effects |= kDiffuse;
   if (!evaluating) {
     out.bake = prebuilt ? prebuilt->bake(probe, options) : bake(probe, options);
@@ -155,6 +160,27 @@ EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOpt
       throw Error("the refit takes at most " + std::to_string(kMaxRefitLights) + " lights");
     out.bake.lights = finishLights(evaluator, std::move(out.bake.lights), a.refit, a.moveDirections,
                                    a.sunAngles, &out.energyShift);
+    if (a.bothCuts) {
+      BakeOptions other = options;
+      other.method = options.method == Method::Variance ? Method::MedianCut : Method::Variance;
+      BakeResult second = grid.bake(probe, other);
+      double shift = 0;
+      second.lights =
+          finishLights(evaluator, std::move(second.lights), a.refit, a.moveDirections, a.sunAngles, &shift);
+      const std::vector<Receiver> receivers = evaluator.fitReceivers(true);
+      const double first = evaluator.fitError(receivers, out.bake.lights),
+                   alternative = evaluator.fitError(receivers, second.lights);
+      const bool swap = alternative < first;
+      char line[200];
+      std::snprintf(line, sizeof line, "both cuts fitted: %s kept (fit error %.4g against %s's %.4g)",
+                    toString(swap ? other.method : options.method).c_str(), swap ? alternative : first,
+                    toString(swap ? options.method : other.method).c_str(), swap ? first : alternative);
+      if (swap) {
+        second.timings.tablesMs = out.bake.timings.tablesMs;
+        out.bake = std::move(second), out.energyShift = shift, out.cut = other.method;
+      }
+      out.bake.notes.push_back(line);
+    }
   }
   out.evaluated = true;
   out.refit = a.refit;

@@ -51,7 +51,7 @@ void writeBake(ResultWriter& w, const BakeReport& report) {
   const BakeOptions& o = report.options;
   const BakeResult& r = report.bake.bake;
   writeSource(w, report.path, probe);
-  w.text("method", toString(o.method));
+  w.text("method", toString(report.bake.cut));  // with both cuts: the one kept
   if (o.method == Method::SphericalHarmonics) {
     w.begin("sh");
     w.integer("bands", o.shBands);

@@ -116,10 +116,26 @@ def test_strength_and_rotation_carry_into_the_lights():
 def test_every_method_bakes():
     harness.empty_scene()
     bright_spot_world((40, 20))
-    for method in ("variance", "median-cut", "sh"):
+    for method in ("auto", "both", "variance", "median-cut", "sh"):
         lights = bake(count=6, method=method)
         assert len(lights) == 6, (method, len(lights))
         assert harness.angle_deg(sun_direction(brightest(lights)), latlong_direction(40, 20, 128, 64)) < 0.5, method
+
+
+def test_auto_fits_both_cuts_up_to_16_lights():
+    """Auto (the default) fits variance and median cut up to 16 lights and keeps the better, says which in the
+    notes; above 16 it cuts with variance alone; Both cuts does it at any count; a tolerance never does."""
+    harness.empty_scene()
+    bright_spot_world((40, 20))
+    settings = bpy.context.scene.probe_lights
+    assert settings.bl_rna.properties["method"].default == "auto"
+    for method, count, both in (("auto", 16, True), ("auto", 17, False), ("both", 24, True),
+                                ("variance", 8, False)):
+        bake(count=count, method=method)
+        assert ("both cuts fitted:" in settings.last_notes) == both, (method, count, settings.last_notes)
+        assert "both cuts" not in settings.last_warnings, settings.last_warnings
+    bake(method="both", count_mode="TOLERANCE", max_error=5.0)
+    assert "both cuts" not in settings.last_notes and "auto count" in settings.last_notes, settings.last_notes
 
 
 def test_estimated_errors_and_count_by_tolerance():
@@ -348,9 +364,10 @@ def test_bad_worlds_are_one_line_reports():
 def test_point_lights_give_the_same_irradiance_at_the_origin():
     harness.empty_scene()
     bright_spot_world((30, 20))
-    suns = bake(count=8, refit=False)
+    # One cut for both (auto may keep another cut for points, whose shadows are hard, than for fitted suns).
+    suns = bake(count=8, refit=False, method="variance")
     sun_e = sorted(float(irradiance(o) @ LUM) for o in suns)
-    points = bake(count=8, light_type="POINT", distance=7.0, refit=False)
+    points = bake(count=8, light_type="POINT", distance=7.0, refit=False, method="variance")
     for o in points:
         assert abs(o.location.length - 7.0) < 1e-4
     # Point power P at distance D gives P / (4 pi D^2) (measured: tests/blender/test_render.py checks it in Cycles).
@@ -678,6 +695,7 @@ def test_panel_draws_at_default_width_in_this_blender():
 
 harness.run([test_register_unregister, test_real_probes_bake_with_their_energy,
              test_strength_and_rotation_carry_into_the_lights, test_every_method_bakes,
+             test_auto_fits_both_cuts_up_to_16_lights,
              test_estimated_errors_and_count_by_tolerance,
              test_more_suns_than_pay_off_are_reported_with_this_versions_measurements, test_tradeoff_in_the_panel, test_node_group_and_reroute, test_mirror_ball_image,
              test_sky_texture_world_is_rendered, test_read_and_rendered_worlds_agree,

@@ -53,11 +53,25 @@ def test_lat_long_convention():
     ({"projection": "cube"}, "unknown projection"),
     ({"resolution": "huge"}, "unknown resolution"),
     ({"nonfinite": "maybe"}, "non-finite policy"),
+    ({"method": "sh", "both_cuts": True}, "both cuts are variance and median cut"),
+    ({"both_cuts": True, "max_error": 0.05}, "both cuts take a light count"),
 ])
 def test_bad_requests_raise_with_the_cores_message(kwargs, message):
     with pytest.raises(pl.Error, match=message):
         pl.bake(np.ones((8, 16, 3), np.float32), **kwargs)
     assert issubclass(pl.Error, ValueError)
+
+
+def test_both_cuts_keep_one_cut_and_say_which(bundled_probe):
+    kw = dict(lights=8, centroid="energy2", effects="diffuse,shadow", refit=True, move_directions=True,
+              evaluator_width=128)
+    r = pl.bake_file(bundled_probe, both_cuts=True, **kw)
+    assert r["method"] in ("variance", "median-cut")
+    note = [n for n in r["notes"] if n.startswith("both cuts fitted: ")]
+    assert note and note[0].startswith("both cuts fitted: %s kept" % r["method"]), r["notes"]
+    alone = pl.bake_file(bundled_probe, method=r["method"], **kw)
+    assert np.array_equal(r["lights"]["rgb"], alone["lights"]["rgb"])
+    assert r["evaluation"]["shadow"] == alone["evaluation"]["shadow"]
 
 
 def test_bad_pixels():
