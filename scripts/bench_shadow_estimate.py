@@ -6,6 +6,8 @@ renders' noise taken out (README table; for every probe: scripts/bench_shadow_ta
 
     tests/blender/run.sh ~/.cache/probelights/bpy-4.5.15/bin/python scripts/bench_shadow_estimate.py \\
         build/probe_lights.zip ../shared [PROBE] [SAMPLES]
+
+PROBELIGHTS_METHOD=both bakes with that method (default: the panel's default, auto).
 """
 import os
 import sys
@@ -37,7 +39,8 @@ if wanted:
     CHOICES = [c for c in CHOICES if c[0] + ("+refit" if c[1] else "") in wanted.split(",")]
 for n in (16, 64):
     for shadows, refit in CHOICES:
-        bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=n, shadows=shadows, refit=refit)
+        bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=n, shadows=shadows, refit=refit,
+                                  method=os.environ.get("PROBELIGHTS_METHOD", "auto"))
         lit = render_scene.render()
         rendered = render_scene.relative_rms(world, lit)
         bpy.context.scene.cycles.seed = 2

@@ -6,7 +6,7 @@ from bpy.props import BoolProperty, CollectionProperty, EnumProperty, FloatPrope
 METHODS = [("auto", "Auto", "Variance minimization; at 16 lights or fewer also median cut, each fitted, and the lights "
                             "that fit the world's light better kept (at 16 suns a second fit: about 0.1 s)"),
            ("both", "Both cuts", "Variance minimization and median cut, each fitted, and the lights that fit the "
-                                 "world's light better kept (a second fit: about 0.1 s at 16 suns, 0.25 s at 64)"),
+                                 "world's light better kept (a second fit: about 0.1 s at 16 suns, 0.3 s at 64)"),
            ("variance", "Variance minimization", "Cut where the light's spread is least (Viriyothai & Debevec 2009)"),
            ("median-cut", "Median cut", "Equal-energy regions (Debevec 2005)"),
            ("sh", "Spherical harmonics", "Cells of equal SH energy by hierarchical warping (Jarosz 2009, Berger 2011)")]

@@ -111,6 +111,35 @@ EvaluatedBake bakeOnGrid(const Probe& probe, const MomentTable& table, double ta
   return out;
 }
 
+namespace {
+
+// Both cuts (AccuracyOptions::bothCuts): the other cut's lights made ready as `out`'s were, and whichever fit
+// the fit receivers better kept in `out`, with a note.
+void keepTheBetterCut(const Probe& probe, const WorkingGrid& grid, const Evaluator& evaluator,
+                      const BakeOptions& options, const AccuracyOptions& a, EvaluatedBake& out) {
+  BakeOptions other = options;
+  other.method = options.method == Method::Variance ? Method::MedianCut : Method::Variance;
+  BakeResult second = grid.bake(probe, other);
+  double shift = 0;
+  second.lights =
+      finishLights(evaluator, std::move(second.lights), a.refit, a.moveDirections, a.sunAngles, &shift);
+  const std::vector<Receiver> receivers = evaluator.fitReceivers(true);
+  const double first = evaluator.fitError(receivers, out.bake.lights),
+               alternative = evaluator.fitError(receivers, second.lights);
+  const bool swap = alternative < first;
+  char line[200];
+  std::snprintf(line, sizeof line, "both cuts fitted: %s kept (fit error %.4g against %s's %.4g)",
+                toString(swap ? other.method : options.method).c_str(), swap ? alternative : first,
+                toString(swap ? options.method : other.method).c_str(), swap ? first : alternative);
+  if (swap) {
+    second.timings.tablesMs = out.bake.timings.tablesMs;
+    out.bake = std::move(second), out.energyShift = shift, out.cut = other.method;
+  }
+  out.bake.notes.push_back(line);
+}
+
+}  // namespace
+
 EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOptions a,
                             const WorkingGrid* prebuilt) {
   if (!(a.maxError >= 0 && a.maxError < 1)) {
@@ -160,27 +189,7 @@ EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOpt
       throw Error("the refit takes at most " + std::to_string(kMaxRefitLights) + " lights");
     out.bake.lights = finishLights(evaluator, std::move(out.bake.lights), a.refit, a.moveDirections,
                                    a.sunAngles, &out.energyShift);
-    if (a.bothCuts) {
-      BakeOptions other = options;
-      other.method = options.method == Method::Variance ? Method::MedianCut : Method::Variance;
-      BakeResult second = grid.bake(probe, other);
-      double shift = 0;
-      second.lights =
-          finishLights(evaluator, std::move(second.lights), a.refit, a.moveDirections, a.sunAngles, &shift);
-      const std::vector<Receiver> receivers = evaluator.fitReceivers(true);
-      const double first = evaluator.fitError(receivers, out.bake.lights),
-                   alternative = evaluator.fitError(receivers, second.lights);
-      const bool swap = alternative < first;
-      char line[200];
-      std::snprintf(line, sizeof line, "both cuts fitted: %s kept (fit error %.4g against %s's %.4g)",
-                    toString(swap ? other.method : options.method).c_str(), swap ? alternative : first,
-                    toString(swap ? options.method : other.method).c_str(), swap ? first : alternative);
-      if (swap) {
-        second.timings.tablesMs = out.bake.timings.tablesMs;
-        out.bake = std::move(second), out.energyShift = shift, out.cut = other.method;
-      }
-      out.bake.notes.push_back(line);
-    }
+    if (a.bothCuts) keepTheBetterCut(probe, grid, evaluator, options, a, out);
   }
   out.evaluated = true;
   out.refit = a.refit;
