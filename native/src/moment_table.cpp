@@ -109,12 +109,7 @@ void MomentTable::addBand(const Probe& band, int y0, int y1) {
     rowLitCells_[cy] = litCells;
     // The pixels' check, when asked: rows where the sums met a negative, NaN or Inf sample are counted
     // (still in cache); in the others there is nothing to count, and their light is the energy just summed.
-    if (!rowCounts_.empty()) {
-      if (odd)
-        rowCounts_[cy] = band.countRows(rows0, rows1);
-      else
-        rowCounts_[cy].positiveLight = total.energy;
-    }
+    checkRows(band, cy, odd, rows0, rows1, total.energy);
   });
 }
 
@@ -155,13 +150,16 @@ void MomentTable::addLatLongPixels(const Probe& band, int y0, int y1) {
     total.energy = energy;
     rowTotals_[y] = total;
     rowLitCells_[y] = lit;
-    if (!rowCounts_.empty()) {  // as in addBand: only a row with odd samples is counted
-      if (odd)
-        rowCounts_[y] = band.countRows(y, y + 1);
-      else
-        rowCounts_[y].positiveLight = energy;
-    }
+    checkRows(band, y, odd, y, y + 1, energy);
   });
+}
+
+void MomentTable::checkRows(const Probe& band, int cellRow, bool odd, int y0, int y1, double energy) {
+  if (rowCounts_.empty()) return;
+  if (odd)
+    rowCounts_[cellRow] = band.countRows(y0, y1);
+  else
+    rowCounts_[cellRow].positiveLight = energy;
 }
 
 void MomentTable::finish() {

@@ -1,6 +1,7 @@
 #include "probelights/pixel_sums.h"
 
 #include <algorithm>
+#include <type_traits>
 #include <vector>
 
 namespace probelights {
@@ -87,6 +88,18 @@ void accumulateRows(const Probe& probe, int y0, int y1, int x0, int x1, int cell
       }
     };
     // Without the squares (only the energy2 centroid reads them) the loop has three fewer chains of sums.
+    // The three choices (grey, squares, check) become the loop's template arguments here, once.
+    auto withFlag = [](bool flag, auto&& f) { flag ? f(std::true_type{}) : f(std::false_type{}); };
+    auto rowOf = [&](int y) {
+      withFlag(view.channels < 3, [&](auto grey) {
+        withFlag(squares, [&](auto sq) {
+          withFlag(oddSamples != nullptr, [&](auto check) {
+            cellsOfRow
+                .template operator()<decltype(grey)::value, decltype(sq)::value, decltype(check)::value>(y);
+          });
+        });
+      });
+    };
     const auto segmentBytes = static_cast<std::ptrdiff_t>(x1 - x0) * step * 4;
     for (int y = y0; y < y1; ++y) {
       // A region's rows are short pieces of long image rows, which the hardware prefetcher picks up late:
@@ -95,22 +108,7 @@ void accumulateRows(const Probe& probe, int y0, int y1, int x0, int x1, int cell
         const char* next = reinterpret_cast<const char*>(view.pixel(x0, y + 1));
         for (std::ptrdiff_t b = 0; b < segmentBytes; b += 64) __builtin_prefetch(next + b);
       }
-      const bool check = oddSamples != nullptr;
-      if (view.channels < 3) {
-        if (squares)
-          check ? cellsOfRow.template operator()<true, true, true>(y)
-                : cellsOfRow.template operator()<true, true, false>(y);
-        else
-          check ? cellsOfRow.template operator()<true, false, true>(y)
-                : cellsOfRow.template operator()<true, false, false>(y);
-      } else {
-        if (squares)
-          check ? cellsOfRow.template operator()<false, true, true>(y)
-                : cellsOfRow.template operator()<false, true, false>(y);
-        else
-          check ? cellsOfRow.template operator()<false, false, true>(y)
-                : cellsOfRow.template operator()<false, false, false>(y);
-      }
+      rowOf(y);
     }
     if (oddSamples) *oddSamples = (odd[0] | odd[1]) != 0;
     return;

@@ -95,6 +95,9 @@ class MomentTable {
 
  private:
   void addLatLongPixels(const Probe& band, int y0, int y1);
+  // The pixels' check of cell row `cellRow` (pixel rows [y0, y1)), when the build checks them: counted when
+  // its sums met a negative, NaN or Inf sample (`odd`), else nothing to count and its light is `energy`.
+  void checkRows(const Probe& band, int cellRow, bool odd, int y0, int y1, double energy);
 
   int cellSize_, pixelWidth_, pixelHeight_;
   SummedAreaTable<5> sat_;
