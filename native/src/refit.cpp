@@ -141,7 +141,10 @@ std::vector<Light> refitIrradiance(const Evaluator& evaluator, const std::vector
   };
   solveColours(out);
   if (placeDarkLights(evaluator, receivers, out)) solveColours(out);
-  for (int round = 0; moveDirs && round < 3; ++round) {
+  // Three rounds up to 16 lights, two above (where a third moved the 15 probes' errors at 64 suns by under
+  // 0.01 points on average, for a fifth of the fit's time; at 16 suns it still lowers the diffuse error).
+  const int rounds = n <= 16 ? 3 : 2;
+  for (int round = 0; moveDirs && round < rounds; ++round) {
     moveDirections(evaluator, receivers, out);
     solveColours(out);
   }
