@@ -16,7 +16,7 @@ from . import cycles_settings, eevee_settings, native, render_cost
 from .conversion import sun_profile
 from .errors import ProbeError
 from .light_objects import baked_worlds, make_lights, remove_collection_if_empty, remove_lights, world_collection
-from .properties import NATIVE_SUN_ANGLES, both_cuts, cut_method
+from .properties import NATIVE_SUN_ANGLES, cut_method, cuts
 from .world_graph import find_probe
 from .world_image import image_pixels, render_world
 from .world_mix import insert_mix, remove_mix
@@ -65,7 +65,7 @@ def world_probe(world, rendered=None):
 
 
 def _native_warning(note):
-    return not note.startswith(("auto count:", "both cuts fitted:"))
+    return not note.startswith(("auto count:", "both cuts fitted:", "both cuts started:"))
 
 
 def bake_world(context, settings, progress=lambda fraction: None, rendered=None, render_ms=0.0):
@@ -95,7 +95,7 @@ def bake_world(context, settings, progress=lambda fraction: None, rendered=None,
                             max_error=max_error, nonfinite=settings.non_finite,
                             sun_angles=NATIVE_SUN_ANGLES[settings.shadows] if settings.light_type == "SUN" else "points",
                             sun_profile=sun_profile(bpy.app.version),
-                            both_cuts=both_cuts(settings.method, settings.count, max_error > 0))
+                            cuts=cuts(settings.method, max_error > 0))
     except ProbeError as e:
         message = str(e)
         if "; to read them as 0" in message:  # the module names the CLI's option; here it is the panel's

@@ -3,8 +3,9 @@
 import bpy
 from bpy.props import BoolProperty, CollectionProperty, EnumProperty, FloatProperty, IntProperty, StringProperty
 
-METHODS = [("auto", "Auto", "Variance minimization; at 16 lights or fewer also median cut, each fitted, and the lights "
-                            "that fit the world's light better kept (at 16 suns a second fit: about 0.1 s)"),
+METHODS = [("auto", "Auto", "Variance minimization and median cut: at 16 lights or fewer each fitted and the lights "
+                            "that fit the world's light better kept (a second fit: about 0.1 s); above, each started "
+                            "and the better fitted alone (about 0.1 s at 64 suns)"),
            ("both", "Both cuts", "Variance minimization and median cut, each fitted, and the lights that fit the "
                                  "world's light better kept (a second fit: about 0.1 s at 16 suns, 0.3 s at 64)"),
            ("variance", "Variance minimization", "Cut where the light's spread is least (Viriyothai & Debevec 2009)"),
@@ -60,7 +61,6 @@ def bake_settings():
 
 
 SETTING_NAMES = tuple(bake_settings())
-BOTH_CUTS_UP_TO = 16  # "auto" fits both cuts up to this many lights
 
 
 def cut_method(method):
@@ -68,9 +68,10 @@ def cut_method(method):
     return "variance" if method in ("auto", "both") else method
 
 
-def both_cuts(method, count, tolerance):
-    """Whether a bake fits both cuts (never when a tolerance picks the count)."""
-    return not tolerance and (method == "both" or (method == "auto" and count <= BOTH_CUTS_UP_TO))
+def cuts(method, tolerance):
+    """The core's cuts for a panel's method (CutChoice: one, both, or auto: both up to 16 lights, above both
+    started and the better finished); one when a tolerance picks the count."""
+    return method if method in ("auto", "both") and not tolerance else "one"
 
 
 class ProbeLightsTradeoffRow(bpy.types.PropertyGroup):

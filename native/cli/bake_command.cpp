@@ -47,7 +47,8 @@ BakeArgs parseBakeArgs(const std::vector<std::string>& argv) {
       flag({"--refit"}, [&] { acc.refit = true; }),
       flag({"--refit-directions"}, [&] { acc.refit = acc.moveDirections = true; }),
       flag({"--evaluate"}, [&] { acc.evaluate = true; }),
-      flag({"--both-cuts"}, [&] { acc.bothCuts = true; }),
+      {{"--cuts"}, [&](const std::string& v) { acc.cuts = parseCutChoice(v); }},
+      flag({"--both-cuts"}, [&] { acc.cuts = CutChoice::Both; }),
   };
   addProbeOptions(table, a.probeOptions);
   const std::vector<std::string> probes = parseOptions(argv, table);

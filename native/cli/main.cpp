@@ -50,8 +50,10 @@ options:
   --max-error E                     the fewest lights whose error is at most E (e.g. 1% or 0.01) on --effects
   --effects diffuse,shadow,glossy   effects to evaluate (default diffuse); evaluating prints their errors
   --evaluate                        evaluate the lights on --effects without choosing the count
-  --both-cuts                       bake with variance and median cut, make both ready (--refit...) and keep
-                                    the lights that fit the probe's light better (costs a second fit)
+  --cuts one|both|auto              one: the --method's cut (default); both: variance and median cut each
+                                    made ready (--refit...), the lights that fit the probe better kept (a
+                                    second fit); auto: both up to 16 lights, above both started and the
+                                    better finished alone (--both-cuts = --cuts both)
   --sun-angles fit|spread|points    the lights' cone angles: fitted to the probe's shadows when shadows are
                                     evaluated (default), from each region's spread, or 0 (hard shadows)
   --sun-profile cone|disc           the renderer's sun: a uniform cone (Cycles 4.0+, default) or a disc of

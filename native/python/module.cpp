@@ -133,12 +133,12 @@ ImageView viewOf(Pixels& pixels) {
 
 AccuracyOptions accuracyOptions(const std::string& effects, bool evaluate, bool refit, double maxError,
                                 int evaluatorWidth, bool moveDirections, const std::string& sunAngles,
-                                const std::string& sunProfile, bool bothCuts = false) {
+                                const std::string& sunProfile, const std::string& cuts = "one") {
   AccuracyOptions a;
   a.effects = parseEffects(effects), a.evaluate = evaluate, a.refit = refit || moveDirections;
   a.maxError = maxError, a.evaluatorWidth = evaluatorWidth, a.moveDirections = moveDirections;
   a.sunAngles = parseSunAngles(sunAngles), a.sunProfile = parseSunProfile(sunProfile);
-  a.bothCuts = bothCuts;
+  a.cuts = parseCutChoice(cuts);
   return a;
 }
 
@@ -146,13 +146,13 @@ py::dict bakePixels(Pixels pixels, const std::string& projection, const std::str
                     const std::string& centroid, const std::string& resolution, bool horizon, int bands,
                     double epsilon, const std::string& effects, bool evaluate, bool refit,
                     bool moveDirections, double maxError, int evaluatorWidth, const std::string& sunAngles,
-                    const std::string& sunProfile, const std::string& nonfinite, bool bothCuts) {
+                    const std::string& sunProfile, const std::string& nonfinite, const std::string& cuts) {
   const ImageView view = viewOf(pixels);
   const auto kind = parseProjection(projection);
   const BakeOptions options = bakeOptions(method, lights, centroid, resolution, horizon, bands, epsilon);
   const NonFinitePolicy policy = parseNonFinitePolicy(nonfinite);
   const AccuracyOptions accuracy = accuracyOptions(effects, evaluate, refit, maxError, evaluatorWidth,
-                                                   moveDirections, sunAngles, sunProfile, bothCuts);
+                                                   moveDirections, sunAngles, sunProfile, cuts);
   std::optional<Probe> probe;
   EvaluatedBake result;
   {
@@ -169,23 +169,23 @@ std::tuple<ProbeOptions, BakeOptions, AccuracyOptions> fileRequest(
     const std::string& resolution, bool horizon, int bands, double epsilon, const std::string& effects,
     bool evaluate, bool refit, bool moveDirections, double maxError, int evaluatorWidth,
     const std::string& sunAngles, const std::string& sunProfile, const std::string& nonfinite,
-    bool bothCuts) {
+    const std::string& cuts) {
   ProbeOptions probe;
   probe.projection = parseProjectionChoice(projection);
   probe.nonFinite = parseNonFinitePolicy(nonfinite);
   return {probe, bakeOptions(method, lights, centroid, resolution, horizon, bands, epsilon),
           accuracyOptions(effects, evaluate, refit, maxError, evaluatorWidth, moveDirections, sunAngles,
-                          sunProfile, bothCuts)};
+                          sunProfile, cuts)};
 }
 
 py::dict bakeFile(const std::string& path, const std::string& projection, const std::string& method,
                   int lights, const std::string& centroid, const std::string& resolution, bool horizon,
                   int bands, double epsilon, const std::string& effects, bool evaluate, bool refit,
                   bool moveDirections, double maxError, int evaluatorWidth, const std::string& sunAngles,
-                  const std::string& sunProfile, const std::string& nonfinite, bool bothCuts) {
+                  const std::string& sunProfile, const std::string& nonfinite, const std::string& cuts) {
   const auto [probeOptions, options, accuracy] = fileRequest(
       projection, method, lights, centroid, resolution, horizon, bands, epsilon, effects, evaluate, refit,
-      moveDirections, maxError, evaluatorWidth, sunAngles, sunProfile, nonfinite, bothCuts);
+      moveDirections, maxError, evaluatorWidth, sunAngles, sunProfile, nonfinite, cuts);
   std::optional<Probe> probe;
   EvaluatedBake result;
   double loadMs = 0;
@@ -214,10 +214,10 @@ py::list bakeFiles(const std::vector<std::string>& inputs, const std::string& pr
                    const std::string& resolution, bool horizon, int bands, double epsilon,
                    const std::string& effects, bool evaluate, bool refit, bool moveDirections,
                    double maxError, int evaluatorWidth, const std::string& sunAngles,
-                   const std::string& sunProfile, const std::string& nonfinite, bool bothCuts) {
+                   const std::string& sunProfile, const std::string& nonfinite, const std::string& cuts) {
   const auto [probeOptions, options, accuracy] = fileRequest(
       projection, method, lights, centroid, resolution, horizon, bands, epsilon, effects, evaluate, refit,
-      moveDirections, maxError, evaluatorWidth, sunAngles, sunProfile, nonfinite, bothCuts);
+      moveDirections, maxError, evaluatorWidth, sunAngles, sunProfile, nonfinite, cuts);
   py::list out;
   {
     py::gil_scoped_release release;
@@ -334,7 +334,7 @@ py::tuple shSample(Pixels pixels, int bands, double epsilon, int samples, int de
   py::arg("epsilon") = 0.01, py::arg("effects") = "diffuse", py::arg("evaluate") = false,            \
   py::arg("refit") = false, py::arg("move_directions") = false, py::arg("max_error") = 0.0,          \
   py::arg("evaluator_width") = 2048, py::arg("sun_angles") = "fit", py::arg("sun_profile") = "cone", \
-  py::arg("nonfinite") = "error", py::arg("both_cuts") = false
+  py::arg("nonfinite") = "error", py::arg("cuts") = "one"
 
 PYBIND11_MODULE(_probelights, m) {
   m.doc() = "probelights: turn an HDR light probe into N lights that carry exactly its energy";

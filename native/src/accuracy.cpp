@@ -6,18 +6,21 @@
 #include <string>
 
 #include "probelights/error.h"
+#include "probelights/names.h"
 #include "probelights/stopwatch.h"
 
 namespace probelights {
 
-std::vector<Light> finishLights(const Evaluator& evaluator, std::vector<Light> lights, bool refit,
-                                bool moveDirections, SunAngles angles, double* energyShift) {
-  double before = 0;
+namespace {
+
+// finishLights after its first step, the angles (`fitted`: whether they were fitted).
+std::vector<Light> finishAngled(const Evaluator& evaluator, std::vector<Light> lights, bool fitted,
+                                bool refit, bool moveDirections, SunAngles angles, double* energyShift) {
+  double before = 0;  // (the angles do not change the colours)
   for (const Light& l : lights) before += l.rgb[0] + l.rgb[1] + l.rgb[2];
-  // Angles first, so the directions move for the shadows the lights will cast; then again for the moved
-  // lights, and their colours for those angles. The refit is kept only if it fits the fit receivers better
-  // (the joint fit can lose on shadows what it wins on shading).
-  const bool fitted = applySunAngles(angles, &evaluator, lights, refit);
+  // The directions move for the shadows the angled lights cast; then the angles again for the moved lights,
+  // and their colours for those angles. The refit is kept only if it fits the fit receivers better (the joint
+  // fit can lose on shadows what it wins on shading).
   if (refit) {
     std::vector<Light> moved = refitIrradiance(evaluator, lights, nullptr, moveDirections);
     if (fitted) {
@@ -34,6 +37,15 @@ std::vector<Light> finishLights(const Evaluator& evaluator, std::vector<Light> l
     *energyShift = before > 0 ? after / before - 1.0 : 0.0;
   }
   return lights;
+}
+
+}  // namespace
+
+std::vector<Light> finishLights(const Evaluator& evaluator, std::vector<Light> lights, bool refit,
+                                bool moveDirections, SunAngles angles, double* energyShift) {
+  // Angles first, so the directions move for the shadows the lights will cast.
+  const bool fitted = applySunAngles(angles, &evaluator, lights, refit);
+  return finishAngled(evaluator, std::move(lights), fitted, refit, moveDirections, angles, energyShift);
 }
 
 AutoCountResult autoCount(const Probe& probe, const Evaluator& evaluator, BakeOptions options,
@@ -91,7 +103,8 @@ AutoCountResult autoCount(const Probe& probe, const Evaluator& evaluator, BakeOp
 }
 
 bool bakesOnGridAlone(const BakeOptions& options, const AccuracyOptions& a) {
-  return usesWorkingGrid(options.method) && !a.evaluate && !a.refit && !(a.maxError > 0) && !a.bothCuts;
+  return usesWorkingGrid(options.method) && !a.evaluate && !a.refit && !(a.maxError > 0) &&
+         a.cuts == CutChoice::One;
 }
 
 EvaluatedBake bakeOnGrid(const Probe& probe, const MomentTable& table, double tablesMs,
@@ -113,32 +126,59 @@ EvaluatedBake bakeOnGrid(const Probe& probe, const MomentTable& table, double ta
 
 namespace {
 
-// Both cuts (AccuracyOptions::bothCuts): the other cut's lights made ready as `out`'s were, and whichever fit
-// the fit receivers better kept in `out`, with a note.
-void keepTheBetterCut(const Probe& probe, const WorkingGrid& grid, const Evaluator& evaluator,
-                      const BakeOptions& options, const AccuracyOptions& a, EvaluatedBake& out) {
+constexpr NameTable<CutChoice, 3> kCutChoices{
+    {{CutChoice::One, "one"}, {CutChoice::Both, "both"}, {CutChoice::Auto, "auto"}}};
+
+// The cuts of a CutChoice other than one (accuracy.h): `out` holds the bake's method's lights as cut; the
+// other cut's lights are cut on the same grid, and the better of the two kept in `out`, finished, with a
+// note.
+void chooseCut(const Probe& probe, const WorkingGrid& grid, const Evaluator& evaluator,
+               const BakeOptions& options, const AccuracyOptions& a, EvaluatedBake& out) {
   BakeOptions other = options;
   other.method = options.method == Method::Variance ? Method::MedianCut : Method::Variance;
   BakeResult second = grid.bake(probe, other);
-  double shift = 0;
-  second.lights =
-      finishLights(evaluator, std::move(second.lights), a.refit, a.moveDirections, a.sunAngles, &shift);
   const std::vector<Receiver> receivers = evaluator.fitReceivers(true);
-  const double first = evaluator.fitError(receivers, out.bake.lights),
-               alternative = evaluator.fitError(receivers, second.lights);
-  const bool swap = alternative < first;
-  char line[200];
-  std::snprintf(line, sizeof line, "both cuts fitted: %s kept (fit error %.4g against %s's %.4g)",
-                toString(swap ? other.method : options.method).c_str(), swap ? alternative : first,
-                toString(swap ? options.method : other.method).c_str(), swap ? first : alternative);
+  const bool finishBoth =
+      a.cuts == CutChoice::Both || !a.refit || out.bake.lights.size() <= kBothFinishedUpTo;
+  double shifts[2] = {0, 0}, errors[2];
+  std::vector<Light>* lights[2] = {&out.bake.lights, &second.lights};
+  if (finishBoth) {
+    for (int c = 0; c < 2; ++c) {
+      *lights[c] =
+          finishLights(evaluator, std::move(*lights[c]), a.refit, a.moveDirections, a.sunAngles, &shifts[c]);
+      errors[c] = evaluator.fitError(receivers, *lights[c]);
+    }
+  } else {
+    // Each started (finishLights' first step, the angles) and judged with its colours solved for them.
+    bool fitted[2];
+    for (int c = 0; c < 2; ++c) {
+      fitted[c] = applySunAngles(a.sunAngles, &evaluator, *lights[c], true);
+      errors[c] = evaluator.fitError(receivers, refitIrradiance(evaluator, *lights[c]));
+    }
+    const int keep = errors[1] < errors[0] ? 1 : 0;
+    *lights[keep] = finishAngled(evaluator, std::move(*lights[keep]), fitted[keep], a.refit, a.moveDirections,
+                                 a.sunAngles, &shifts[keep]);
+  }
+  const bool swap = errors[1] < errors[0];
+  const Method kept = swap ? other.method : options.method, left = swap ? options.method : other.method;
+  char line[240];
+  std::snprintf(line, sizeof line,
+                finishBoth ? "both cuts fitted: %s kept (fit error %.4g against %s's %.4g)"
+                           : "both cuts started: %s kept and finished (fit error with colours refit %.4g "
+                             "against %s's %.4g)",
+                toString(kept).c_str(), errors[swap ? 1 : 0], toString(left).c_str(), errors[swap ? 0 : 1]);
+  out.energyShift = shifts[swap ? 1 : 0];
   if (swap) {
     second.timings.tablesMs = out.bake.timings.tablesMs;
-    out.bake = std::move(second), out.energyShift = shift, out.cut = other.method;
+    out.bake = std::move(second), out.cut = other.method;
   }
   out.bake.notes.push_back(line);
 }
 
 }  // namespace
+
+std::string toString(CutChoice cuts) { return std::string(nameOf(kCutChoices, cuts)); }
+CutChoice parseCutChoice(const std::string& name) { return parseName(kCutChoices, "cuts", name); }
 
 EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOptions a,
                             const WorkingGrid* prebuilt) {
@@ -149,10 +189,11 @@ EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOpt
   }
   EvaluatedBake out;
   out.cut = options.method;
-  if (a.bothCuts && options.method != Method::Variance && options.method != Method::MedianCut)
+  const bool twoCuts = a.cuts != CutChoice::One;
+  if (twoCuts && options.method != Method::Variance && options.method != Method::MedianCut)
     throw Error("both cuts are variance and median cut: bake with one of them");
-  if (a.bothCuts && a.maxError > 0) throw Error("both cuts take a light count, not an error tolerance");
-  const bool evaluating = a.evaluate || a.refit || a.maxError > 0 || a.bothCuts;
+  if (twoCuts && a.maxError > 0) throw Error("both cuts take a light count, not an error tolerance");
+  const bool evaluating = a.evaluate || a.refit || a.maxError > 0 || twoCuts;
   if (a.refit) a.effects |= kDiffuse;
   if (!evaluating) {
     out.bake = prebuilt ? prebuilt->bake(probe, options) : bake(probe, options);
@@ -187,9 +228,11 @@ EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOpt
     out.count = options.lights;
     if (a.refit && out.bake.lights.size() > kMaxRefitLights)
       throw Error("the refit takes at most " + std::to_string(kMaxRefitLights) + " lights");
-    out.bake.lights = finishLights(evaluator, std::move(out.bake.lights), a.refit, a.moveDirections,
-                                   a.sunAngles, &out.energyShift);
-    if (a.bothCuts) keepTheBetterCut(probe, grid, evaluator, options, a, out);
+    if (twoCuts)
+      chooseCut(probe, grid, evaluator, options, a, out);
+    else
+      out.bake.lights = finishLights(evaluator, std::move(out.bake.lights), a.refit, a.moveDirections,
+                                     a.sunAngles, &out.energyShift);
   }
   out.evaluated = true;
   out.refit = a.refit;

@@ -53,8 +53,10 @@ def test_lat_long_convention():
     ({"projection": "cube"}, "unknown projection"),
     ({"resolution": "huge"}, "unknown resolution"),
     ({"nonfinite": "maybe"}, "non-finite policy"),
-    ({"method": "sh", "both_cuts": True}, "both cuts are variance and median cut"),
-    ({"both_cuts": True, "max_error": 0.05}, "both cuts take a light count"),
+    ({"method": "sh", "cuts": "both"}, "both cuts are variance and median cut"),
+    ({"method": "sh", "cuts": "auto"}, "both cuts are variance and median cut"),
+    ({"cuts": "both", "max_error": 0.05}, "both cuts take a light count"),
+    ({"cuts": "all"}, "unknown cuts 'all': use one, both or auto"),
 ])
 def test_bad_requests_raise_with_the_cores_message(kwargs, message):
     with pytest.raises(pl.Error, match=message):
@@ -62,13 +64,14 @@ def test_bad_requests_raise_with_the_cores_message(kwargs, message):
     assert issubclass(pl.Error, ValueError)
 
 
-def test_both_cuts_keep_one_cut_and_say_which(bundled_probe):
-    kw = dict(lights=8, centroid="energy2", effects="diffuse,shadow", refit=True, move_directions=True,
+@pytest.mark.parametrize("cuts, lights, said", [("both", 8, "fitted"), ("auto", 8, "fitted"), ("auto", 20, "started")])
+def test_both_cuts_keep_one_cut_and_say_which(bundled_probe, cuts, lights, said):
+    kw = dict(lights=lights, centroid="energy2", effects="diffuse,shadow", refit=True, move_directions=True,
               evaluator_width=128)
-    r = pl.bake_file(bundled_probe, both_cuts=True, **kw)
+    r = pl.bake_file(bundled_probe, cuts=cuts, **kw)
     assert r["method"] in ("variance", "median-cut")
-    note = [n for n in r["notes"] if n.startswith("both cuts fitted: ")]
-    assert note and note[0].startswith("both cuts fitted: %s kept" % r["method"]), r["notes"]
+    note = [n for n in r["notes"] if n.startswith("both cuts ")]
+    assert note and note[0].startswith("both cuts %s: %s kept" % (said, r["method"])), r["notes"]
     alone = pl.bake_file(bundled_probe, method=r["method"], **kw)
     assert np.array_equal(r["lights"]["rgb"], alone["lights"]["rgb"])
     assert r["evaluation"]["shadow"] == alone["evaluation"]["shadow"]

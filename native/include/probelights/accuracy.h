@@ -3,6 +3,7 @@
 #pragma once
 
 #include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -38,6 +39,23 @@ AutoCountResult autoCount(const Probe& probe, const Evaluator& evaluator, BakeOp
                           double tolerance, bool refit, int maxLights = 1024, bool moveDirections = false,
                           const WorkingGrid* grid = nullptr, SunAngles angles = SunAngles::Spread);
 
+// Whose lights a bake keeps. Neither cut wins everywhere (median cut fits 5 of the 15 probes better at 16
+// suns, 5 at 64), so both can be tried, each judged by how its diffuse light and shadows fit the probe
+// (Evaluator::fitError on the fit receivers, not the points the errors are measured on):
+// - one: the bake's method's lights.
+// - both: the lights of variance minimization and of median cut each made ready (finishLights) and the
+//   better kept; the pick has the lower estimated shadow error on 26 of those 30 (README). Costs a second
+//   finishLights (64 suns with the add-on's refit: ~0.3 s).
+// - auto: both up to kBothFinishedUpTo lights (or without the refit, where finishing is only the angles);
+//   above, both cuts are started (their angles fitted, finishLights' first step, and their colours solved)
+//   and only the better is finished. At 64 suns that keeps the better finished cut on 13 of 15 probes
+//   (README) for ~a fifth of the second finish's cost.
+// The kept lights are those that cut alone, finished as finishLights finishes them, gives (the same bits).
+enum class CutChoice { One, Both, Auto };
+inline constexpr std::size_t kBothFinishedUpTo = 16;
+std::string toString(CutChoice cuts);
+CutChoice parseCutChoice(const std::string& name);  // throws Error naming the choices
+
 // One bake with the accuracy options the CLI and the add-on offer: `maxError` > 0 picks the count
 // (autoCount), `refit` refits the lights' colours, and any of them (or `evaluate`) measures the errors on
 // `effects`.
@@ -51,13 +69,8 @@ struct AccuracyOptions {
   // judged and fitted as (cone.h).
   SunAngles sunAngles = SunAngles::Fit;
   SunProfile sunProfile = SunProfile::Cone;
-  // Both cuts: the lights of variance minimization and of median cut (whichever the bake's method is not:
-  // it must be one of them), each made ready (finishLights), and the ones whose diffuse light and shadows fit
-  // the probe better (Evaluator::fitError on the fit receivers, not the points the errors are measured on)
-  // are kept. Neither cut wins everywhere (median cut fits 5 of the 15 probes better at 16 suns, 5 at 64);
-  // the pick has the lower estimated shadow error on 26 of those 30 (README). Costs a second finishLights.
-  // Not with a tolerance (maxError).
-  bool bothCuts = false;
+  // Which cut's lights (CutChoice) when the bake's method is variance or median cut. Not with a tolerance.
+  CutChoice cuts = CutChoice::One;
 };
 
 struct EvaluatedBake {
@@ -69,7 +82,7 @@ struct EvaluatedBake {
   SunAngles sunAngles = SunAngles::Spread;   // what the lights' angles are: fit only when they were fitted
   SunProfile sunProfile = SunProfile::Cone;  // the sun they were judged as
   int count = 0;  // the light count asked for, or chosen when autoCount (bake.lights may hold fewer)
-  Method cut = Method::Variance;              // the method the lights were cut with (bothCuts: the one kept)
+  Method cut = Method::Variance;              // the method the lights were cut with (the one kept)
   std::vector<std::pair<int, double>> tried;  // autoCount: (count, worst error) of every count tried
 };
 
