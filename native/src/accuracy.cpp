@@ -149,11 +149,14 @@ void chooseCut(const Probe& probe, const WorkingGrid& grid, const Evaluator& eva
       errors[c] = evaluator.fitError(receivers, *lights[c]);
     }
   } else {
-    // Each started (finishLights' first step, the angles) and judged with its colours solved for them.
+    // Each started (finishLights' first step, the angles) and judged with its colours solved for them (the
+    // solve alone: placing dark lights too picked worse at 64 suns, 0.324 against 0.320 % mean shadow error).
     bool fitted[2];
     for (int c = 0; c < 2; ++c) {
       fitted[c] = applySunAngles(a.sunAngles, &evaluator, *lights[c], true);
-      errors[c] = evaluator.fitError(receivers, refitIrradiance(evaluator, *lights[c]));
+      std::vector<Light> judged = *lights[c];
+      solveColours(evaluator, receivers, judged);
+      errors[c] = evaluator.fitError(receivers, judged);
     }
     const int keep = errors[1] < errors[0] ? 1 : 0;
     *lights[keep] = finishAngled(evaluator, std::move(*lights[keep]), fitted[keep], a.refit, a.moveDirections,
@@ -164,7 +167,7 @@ void chooseCut(const Probe& probe, const WorkingGrid& grid, const Evaluator& eva
   char line[240];
   std::snprintf(line, sizeof line,
                 finishBoth ? "both cuts fitted: %s kept (fit error %.4g against %s's %.4g)"
-                           : "both cuts started: %s kept and finished (fit error with colours refit %.4g "
+                           : "both cuts started: %s kept and finished (fit error with colours solved %.4g "
                              "against %s's %.4g)",
                 toString(kept).c_str(), errors[swap ? 1 : 0], toString(left).c_str(), errors[swap ? 0 : 1]);
   out.energyShift = shifts[swap ? 1 : 0];

@@ -26,6 +26,11 @@ inline constexpr std::size_t kMaxRefitLights = 256;
 std::vector<Light> refitIrradiance(const Evaluator& evaluator, const std::vector<Light>& lights,
                                    double* energyShift = nullptr, bool moveDirections = false);
 
+// The colour solve alone (refitIrradiance's first step): each light's non-negative colour, per channel, so
+// the lights as they are fit `receivers` best; no light is placed anew.
+void solveColours(const Evaluator& evaluator, const std::vector<Receiver>& receivers,
+                  std::vector<Light>& lights);
+
 // Lights the colour solve left dark (luminance 0: their region's light is better carried by their
 // neighbours; 2 of 16 on st_peters_square_night, 5 of 64 on StageEnvLatLong) are placed anew where the fit
 // wants light most: each in turn at the candidate direction (the probe's 256 brightest samples and the
