@@ -5,7 +5,7 @@ from bpy.props import BoolProperty, CollectionProperty, EnumProperty, FloatPrope
 
 METHODS = [("auto", "Auto", "Variance minimization and median cut: at 16 lights or fewer each fitted and the lights "
                             "that fit the world's light better kept (a second fit: about 0.1 s); above, each started "
-                            "and the better fitted alone (about 0.1 s at 64 suns)"),
+                            "and the better fitted alone (about 0.07 s at 64 suns)"),
            ("both", "Both cuts", "Variance minimization and median cut, each fitted, and the lights that fit the "
                                  "world's light better kept (a second fit: about 0.1 s at 16 suns, 0.3 s at 64)"),
            ("variance", "Variance minimization", "Cut where the light's spread is least (Viriyothai & Debevec 2009)"),
