@@ -142,6 +142,11 @@ def _percent(fraction):
     return "%.2f" % p if p < 10 else "%.1f" % p if p < 100 else "%.0f" % p
 
 
+def _click_time(ms):
+    """A click's time at most four characters wide: milliseconds, or from 10 s on whole seconds ("11s")."""
+    return "%.0f" % ms if ms < 9999.5 else "%.0fs" % (ms / 1000)
+
+
 def draw_tradeoff(layout, settings, width, measure):
     """What accuracy costs, per light count: a whole click's time and the estimated errors (refit rows when the
     panel's Refit is on); a count's button uses it."""
@@ -152,7 +157,7 @@ def draw_tradeoff(layout, settings, width, measure):
     for r in sorted((r for r in settings.tradeoff if r.refit == settings.refit), key=lambda r: r.lights):
         row = box.row(align=True)
         row.operator("probe_lights.set_count", text=str(r.lights)).count = r.lights
-        for text in ("%.0f" % r.click_ms, _percent(r.diffuse), _percent(r.shadow)):
+        for text in (_click_time(r.click_ms), _percent(r.diffuse), _percent(r.shadow)):
             if not fits(text, width / 4 - 6, measure):
                 OVERFLOW.append(text)
             row.label(text=text)
