@@ -17,100 +17,169 @@ PixelSums& PixelSums::operator+=(const PixelSums& o) {
   return *this;
 }
 
+namespace {
+
+// The lat-long loop. A pixel's weights are its row's (dOmega, cos el, sin el) and its column's (cos phi,
+// sin phi), so rows are taken four at a time, one row per lane of a vector of four doubles: each lane sums
+// its row's pixels of a cell, the lanes are scaled by their rows' weights and added once per cell,
+// ((l0 + l1) + (l2 + l3)). A group of fewer rows fills its empty lanes with its first row at weight 0 (0
+// exactly). The same operations in the same order whoever calls and on any processor (the AVX2 build below
+// has no FMA: no contraction), so band and whole builds stay bit-identical; a cell of one pixel gets exactly
+// the products the full-resolution table writes (MomentTable::addLatLongPixels).
+using D4 = double __attribute__((vector_size(32)));
+using F4 = float __attribute__((vector_size(16)));
+using I4 = long long __attribute__((vector_size(32)));
+constexpr double kMax = 3.4028234663852886e38;  // FLT_MAX: Probe::finite's bounds
+
+struct LatLongRows {
+  const ImageView& view;
+  const Projection& projection;
+  int y0, y1, x0, x1, cellSize;
+  PixelSums* cells;
+};
+
+[[gnu::always_inline]] inline double hsum(const D4& v) { return (v[0] + v[1]) + (v[2] + v[3]); }
+
+// The four rows' samples of one channel at column offset `at`, as doubles; NaN, Inf and values beyond FLT_MAX
+// read as 0 (Probe::finite); `odd` collects, when checking, whether any was negative, NaN or Inf. (Vectors go
+// in and out by reference: by value they would change the ABI between the portable and the AVX2 build.)
+template <bool Check>
+[[gnu::always_inline]] inline void samples4(const float* const* p, std::ptrdiff_t at, I4& odd, D4& out) {
+  const F4 f = {p[0][at], p[1][at], p[2][at], p[3][at]};
+  const D4 v = __builtin_convertvector(f, D4), zero = {0, 0, 0, 0};
+  const D4 lo = {-kMax, -kMax, -kMax, -kMax}, hi = {kMax, kMax, kMax, kMax};
+  if constexpr (Check) odd |= ~((v >= zero) & (v <= hi));
+  out = ((v >= lo) & (v <= hi)) ? v : zero;
+}
+
+template <bool Grey, bool Squares, bool Check>
+[[gnu::always_inline]] inline bool latLongGroups(const LatLongRows& a) {
+  const std::ptrdiff_t step = a.view.pixelStep();
+  const D4 zero = {0, 0, 0, 0};
+  const D4 wR = {0.2126, 0.2126, 0.2126, 0.2126}, wG = {0.7152, 0.7152, 0.7152, 0.7152},
+           wB = {0.0722, 0.0722, 0.0722, 0.0722};
+  const double* cosPhi = a.projection.latLongRow(a.y0).cosPhi;
+  const double* sinPhi = a.projection.latLongRow(a.y0).sinPhi;
+  const auto pieceBytes = static_cast<std::ptrdiff_t>(a.x1 - a.x0) * step * 4;
+  I4 odd = {0, 0, 0, 0};
+  for (int g = a.y0; g < a.y1; g += 4) {
+    const int rows = std::min(4, a.y1 - g);
+    // A region's rows are short pieces of long image rows, which the hardware prefetcher picks up late:
+    // ask for the next group's pieces now.
+    if (a.x1 - a.x0 < a.view.width)
+      for (int y = g + 4; y < std::min(a.y1, g + 8); ++y) {
+        const char* next = reinterpret_cast<const char*>(a.view.pixel(a.x0, y));
+        for (std::ptrdiff_t b = 0; b < pieceBytes; b += 64) __builtin_prefetch(next + b);
+      }
+    const float* p[4];
+    D4 dw = zero, dwCos = zero, dwSin = zero;
+    for (int k = 0; k < 4; ++k) {
+      const int y = k < rows ? g + k : g;
+      p[k] = a.view.pixel(a.x0, y);
+      if (k >= rows) continue;
+      const auto row = a.projection.latLongRow(y);
+      dw[k] = row.solidAngle, dwCos[k] = row.solidAngle * row.cosEl, dwSin[k] = row.solidAngle * row.sinEl;
+    }
+    for (int x = a.x0, c = 0; x < a.x1; ++c) {
+      const int end = std::min(a.x1, x + a.cellSize), count = end - x;
+      D4 r = zero, gr = zero, b = zero, sY = zero, sYc = zero, sYs = zero, sY2 = zero, sY2c = zero,
+         sY2s = zero;
+      I4 lit = {0, 0, 0, 0};
+      for (; x < end; ++x) {
+        const std::ptrdiff_t at = static_cast<std::ptrdiff_t>(x - a.x0) * step;
+        D4 Rs, Gs, Bs;
+        samples4<Check>(p, at, odd, Rs);
+        if constexpr (Grey) {
+          Gs = Rs, Bs = Rs;
+        } else {
+          samples4<Check>(p, at + 1, odd, Gs), samples4<Check>(p, at + 2, odd, Bs);
+        }
+        // Colours keep a negative sample's sign (Probe::light); the weights read it as 0.
+        const D4 R = Rs > zero ? Rs : zero, G = Gs > zero ? Gs : zero, B = Bs > zero ? Bs : zero;
+        const D4 Y = wR * R + wG * G + wB * B;
+        const double cp = cosPhi[x], sp = sinPhi[x];
+        r += Rs, gr += Gs, b += Bs;
+        sY += Y, sYc += Y * cp, sYs += Y * sp;
+        if constexpr (Squares) {
+          const D4 Y2 = Y * Y;
+          sY2 += Y2, sY2c += Y2 * cp, sY2s += Y2 * sp;
+        }
+        lit -= Y > zero;
+      }
+      PixelSums& s = a.cells[c];
+      s.rgb[0] += hsum(r * dw), s.rgb[1] += hsum(gr * dw), s.rgb[2] += hsum(b * dw);
+      s.solidAngle += hsum(dw * static_cast<double>(count));
+      s.energy += hsum(sY * dw);
+      s.moment += Vec3{hsum(sYc * dwCos), hsum(sYs * dwCos), hsum(sY * dwSin)};
+      if constexpr (Squares) {
+        s.energy2 += hsum(sY2 * dw);
+        s.moment2 += Vec3{hsum(sY2c * dwCos), hsum(sY2s * dwCos), hsum(sY2 * dwSin)};
+      }
+      for (int k = 0; k < rows; ++k) s.litPixels += lit[k];
+    }
+  }
+  return (odd[0] | odd[1] | odd[2] | odd[3]) != 0;
+}
+
+// The three choices (grey, squares, check) become the loop's template arguments here, once (a switch, not
+// lambdas: a lambda would be compiled for the default target inside the AVX2 clone too).
+[[gnu::always_inline]] inline bool latLongChoices(const LatLongRows& a, bool grey, bool squares, bool check) {
+  switch ((grey ? 4 : 0) | (squares ? 2 : 0) | (check ? 1 : 0)) {
+    case 0:
+      return latLongGroups<false, false, false>(a);
+    case 1:
+      return latLongGroups<false, false, true>(a);
+    case 2:
+      return latLongGroups<false, true, false>(a);
+    case 3:
+      return latLongGroups<false, true, true>(a);
+    case 4:
+      return latLongGroups<true, false, false>(a);
+    case 5:
+      return latLongGroups<true, false, true>(a);
+    case 6:
+      return latLongGroups<true, true, false>(a);
+    default:
+      return latLongGroups<true, true, true>(a);
+  }
+}
+
+bool latLongPortable(const LatLongRows& a, bool grey, bool squares, bool check) {
+  return latLongChoices(a, grey, squares, check);
+}
+
+#if defined(__x86_64__)
+// The same loop with four-double AVX2 vectors (the portable build splits each into two SSE2 pairs).
+__attribute__((target("avx2"))) bool latLongAvx2(const LatLongRows& a, bool grey, bool squares, bool check) {
+  return latLongChoices(a, grey, squares, check);
+}
+#endif
+
+bool latLongRows(const LatLongRows& a, bool grey, bool squares, bool check) {
+#if defined(__x86_64__)
+  static const bool avx2 = [] {
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx2") != 0;
+  }();
+  if (avx2) return latLongAvx2(a, grey, squares, check);
+#endif
+  return latLongPortable(a, grey, squares, check);
+}
+
+}  // namespace
+
 void accumulateRows(const Probe& probe, int y0, int y1, int x0, int x1, int cellSize,
                     std::span<PixelSums> cells, bool squares, bool* oddSamples) {
   const Projection& projection = probe.projection();
   if (oddSamples) *oddSamples = true;  // unless the lat-long loop below looked
   if (projection.kind() == ProjectionKind::LatLong) {
-    const ImageView& view = probe.view();
-    const std::ptrdiff_t step = view.pixelStep();
-    // Pixels are summed two at a time, even and odd pixels of a cell in the two lanes of a pair of doubles
-    // (SSE2, which every x86-64 has; elsewhere the compiler splits the pairs), the lanes added at the cell's
-    // end: the same operations in the same order whoever calls, so band and whole builds stay bit-identical.
-    using D2 = double __attribute__((vector_size(16)));
-    using I2 = long long __attribute__((vector_size(16)));
-    constexpr double kMax = 3.4028234663852886e38;  // FLT_MAX: Probe::finite's bounds
-    const D2 zero = {0, 0}, lo = {-kMax, -kMax}, hi = {kMax, kMax};
-    const D2 wR = {0.2126, 0.2126}, wG = {0.7152, 0.7152}, wB = {0.0722, 0.0722};
-    // `odd` collects, when asked, whether any sample read was negative, NaN or Inf.
-    I2 odd = {0, 0};
-    auto finite2 = [&]<bool Check>(float a, float b) {
-      const D2 v = {a, b};
-      if constexpr (Check) odd |= ~((v >= zero) & (v <= hi));
-      return ((v >= lo) & (v <= hi)) ? v : zero;
-    };
-    auto load2 = [](const double* v) {
-      D2 d;
-      __builtin_memcpy(&d, v, sizeof d);
-      return d;
-    };
-    auto cellsOfRow = [&]<bool Grey, bool Squares, bool Check>(int y) {
-      const auto row = projection.latLongRow(y);
-      const double dw = row.solidAngle;
-      const float* p = view.pixel(x0, y);
-      for (int x = x0, c = 0; x < x1; ++c) {
-        const int start = x, end = std::min(x1, x + cellSize);
-        D2 r = zero, g = zero, b = zero, sY = zero, sYc = zero, sYs = zero, sY2 = zero, sY2c = zero,
-           sY2s = zero;
-        I2 lit = {0, 0};
-        auto add = [&](D2 Rs, D2 Gs, D2 Bs, D2 cosPhi, D2 sinPhi) {
-          // Colours keep a negative sample's sign (Probe::light); the weights read it as 0.
-          const D2 R = Rs > zero ? Rs : zero, G = Gs > zero ? Gs : zero, B = Bs > zero ? Bs : zero;
-          const D2 Y = wR * R + wG * G + wB * B, Y2 = Y * Y;
-          r += Rs, g += Gs, b += Bs;
-          sY += Y, sYc += Y * cosPhi, sYs += Y * sinPhi;
-          if constexpr (Squares) sY2 += Y2, sY2c += Y2 * cosPhi, sY2s += Y2 * sinPhi;
-          lit -= Y > zero;
-        };
-        for (; x + 1 < end; x += 2, p += 2 * step) {
-          const D2 Rs = finite2.template operator()<Check>(p[0], p[step]);
-          const D2 Gs = Grey ? Rs : finite2.template operator()<Check>(p[1], p[step + 1]),
-                   Bs = Grey ? Rs : finite2.template operator()<Check>(p[2], p[step + 2]);
-          add(Rs, Gs, Bs, load2(row.cosPhi + x), load2(row.sinPhi + x));
-        }
-        if (x < end) {  // an odd pixel left: the even lane takes it
-          const double Rs = Probe::finite(p[0]), Gs = Grey ? Rs : Probe::finite(p[1]),
-                       Bs = Grey ? Rs : Probe::finite(p[2]);
-          if constexpr (Check)
-            for (int k = 0; k < (Grey ? 1 : 3); ++k) odd[0] |= !(p[k] >= 0.0f && p[k] <= 3.4028234e38f);
-          add(D2{Rs, 0}, D2{Gs, 0}, D2{Bs, 0}, D2{row.cosPhi[x], 0}, D2{row.sinPhi[x], 0});
-          ++x, p += step;
-        }
-        auto sum = [](D2 v) { return v[0] + v[1]; };
-        PixelSums& s = cells[c];
-        s.rgb[0] += sum(r) * dw, s.rgb[1] += sum(g) * dw, s.rgb[2] += sum(b) * dw;
-        s.solidAngle += dw * (end - start);
-        s.energy += sum(sY) * dw;
-        s.moment += Vec3{dw * row.cosEl * sum(sYc), dw * row.cosEl * sum(sYs), dw * row.sinEl * sum(sY)};
-        s.energy2 += sum(sY2) * dw;
-        s.moment2 += Vec3{dw * row.cosEl * sum(sY2c), dw * row.cosEl * sum(sY2s), dw * row.sinEl * sum(sY2)};
-        s.litPixels += lit[0] + lit[1];
-      }
-    };
-    // Without the squares (only the energy2 centroid reads them) the loop has three fewer chains of sums.
-    // The three choices (grey, squares, check) become the loop's template arguments here, once.
-    auto withFlag = [](bool flag, auto&& f) { flag ? f(std::true_type{}) : f(std::false_type{}); };
-    auto rowOf = [&](int y) {
-      withFlag(view.channels < 3, [&](auto grey) {
-        withFlag(squares, [&](auto sq) {
-          withFlag(oddSamples != nullptr, [&](auto check) {
-            cellsOfRow
-                .template operator()<decltype(grey)::value, decltype(sq)::value, decltype(check)::value>(y);
-          });
-        });
-      });
-    };
-    const auto segmentBytes = static_cast<std::ptrdiff_t>(x1 - x0) * step * 4;
-    for (int y = y0; y < y1; ++y) {
-      // A region's rows are short pieces of long image rows, which the hardware prefetcher picks up late:
-      // ask for the next row's piece now.
-      if (y + 1 < y1 && x1 - x0 < view.width) {
-        const char* next = reinterpret_cast<const char*>(view.pixel(x0, y + 1));
-        for (std::ptrdiff_t b = 0; b < segmentBytes; b += 64) __builtin_prefetch(next + b);
-      }
-      rowOf(y);
+    if (y0 >= y1 || x0 >= x1) {
+      if (oddSamples) *oddSamples = false;
+      return;
     }
-    if (oddSamples) *oddSamples = (odd[0] | odd[1]) != 0;
+    const bool odd = latLongRows({probe.view(), projection, y0, y1, x0, x1, cellSize, cells.data()},
+                                 probe.view().channels < 3, squares, oddSamples != nullptr);
+    if (oddSamples) *oddSamples = odd;
     return;
   }
   // Ball and angular maps: per-pixel directions and solid angles.
