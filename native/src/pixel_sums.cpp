@@ -20,16 +20,71 @@ PixelSums& PixelSums::operator+=(const PixelSums& o) {
 namespace {
 
 // The lat-long loop. A pixel's weights are its row's (dOmega, cos el, sin el) and its column's (cos phi,
-// sin phi), so rows are taken four at a time, one row per lane of a vector of four doubles: each lane sums
-// its row's pixels of a cell, the lanes are scaled by their rows' weights and added once per cell,
-// ((l0 + l1) + (l2 + l3)). A group of fewer rows fills its empty lanes with its first row at weight 0 (0
-// exactly). The same operations in the same order whoever calls and on any processor (the AVX2 build below
-// has no FMA: no contraction), so band and whole builds stay bit-identical; a cell of one pixel gets exactly
-// the products the full-resolution table writes (MomentTable::addLatLongPixels).
+// sin phi), so rows are taken four at a time, one row per lane: each lane sums its row's pixels of a cell,
+// the lanes are scaled by their rows' weights and added once per cell, ((l0 + l1) + (l2 + l3)). A group of
+// fewer rows fills its empty lanes with its first row at weight 0 (0 exactly). The four lanes are one vector
+// of four doubles in the AVX2 build and two SSE2 pairs (rows 0-1, rows 2-3) in the portable one (GCC splits
+// a four-double vector without AVX through the stack: 1.7x slower than two pairs); the same operations lane
+// by lane, and no FMA (no contraction), so both give the same bits. Band and whole builds stay bit-identical;
+// a cell of one pixel gets exactly the products the full-resolution table writes (addLatLongPixels).
+using D2 = double __attribute__((vector_size(16)));
+using I2 = long long __attribute__((vector_size(16)));
 using D4 = double __attribute__((vector_size(32)));
-using F4 = float __attribute__((vector_size(16)));
 using I4 = long long __attribute__((vector_size(32)));
+using F4 = float __attribute__((vector_size(16)));
 constexpr double kMax = 3.4028234663852886e38;  // FLT_MAX: Probe::finite's bounds
+
+// Four lanes as two pairs, with the operations the loop uses.
+struct Pairs {
+  D2 lo, hi;
+};
+struct PairMasks {
+  I2 lo, hi;
+};
+#define PROBELIGHTS_LANEWISE(R, op, A, B) \
+  [[gnu::always_inline]] inline R operator op(const A& a, const B& b) { return {a.lo op b.lo, a.hi op b.hi}; }
+PROBELIGHTS_LANEWISE(Pairs, +, Pairs, Pairs)
+PROBELIGHTS_LANEWISE(Pairs, *, Pairs, Pairs)
+PROBELIGHTS_LANEWISE(PairMasks, >, Pairs, Pairs)
+PROBELIGHTS_LANEWISE(PairMasks, >=, Pairs, Pairs)
+PROBELIGHTS_LANEWISE(PairMasks, <=, Pairs, Pairs)
+PROBELIGHTS_LANEWISE(PairMasks, &, PairMasks, PairMasks)
+PROBELIGHTS_LANEWISE(PairMasks, |, PairMasks, PairMasks)
+PROBELIGHTS_LANEWISE(PairMasks, -, PairMasks, PairMasks)
+#undef PROBELIGHTS_LANEWISE
+[[gnu::always_inline]] inline PairMasks operator~(const PairMasks& m) { return {~m.lo, ~m.hi}; }
+[[gnu::always_inline]] inline Pairs operator*(const Pairs& a, double s) { return {a.lo * s, a.hi * s}; }
+
+// What the loop needs of a lane type beyond its operators: V is D4 (AVX2) or Pairs (portable).
+template <class V>
+struct Lanes;
+template <>
+struct Lanes<D4> {  // values out by reference: by value a four-double vector changes the ABI without AVX
+  using Mask = I4;
+  static void splat(double x, D4& out) { out = D4{x, x, x, x}; }
+  static void load(float a, float b, float c, float d, D4& out) {
+    out = __builtin_convertvector((F4{a, b, c, d}), D4);
+  }
+  static void keep(const D4& v, const I4& m, D4& out) {
+    out = reinterpret_cast<D4>(reinterpret_cast<I4>(v) & m);
+  }
+  static double get(const D4& v, int k) { return v[k]; }
+  static void set(D4& v, int k, double x) { v[k] = x; }
+  static long long get(const I4& m, int k) { return m[k]; }
+};
+template <>
+struct Lanes<Pairs> {
+  using Mask = PairMasks;
+  static void splat(double x, Pairs& out) { out = {D2{x, x}, D2{x, x}}; }
+  static void load(float a, float b, float c, float d, Pairs& out) { out = {D2{a, b}, D2{c, d}}; }
+  static void keep(const Pairs& v, const PairMasks& m, Pairs& out) {
+    out = {reinterpret_cast<D2>(reinterpret_cast<I2>(v.lo) & m.lo),
+           reinterpret_cast<D2>(reinterpret_cast<I2>(v.hi) & m.hi)};
+  }
+  static double get(const Pairs& v, int k) { return k < 2 ? v.lo[k] : v.hi[k - 2]; }
+  static void set(Pairs& v, int k, double x) { (k < 2 ? v.lo[k] : v.hi[k - 2]) = x; }
+  static long long get(const PairMasks& m, int k) { return k < 2 ? m.lo[k] : m.hi[k - 2]; }
+};
 
 struct LatLongRows {
   const ImageView& view;
@@ -38,30 +93,38 @@ struct LatLongRows {
   PixelSums* cells;
 };
 
-[[gnu::always_inline]] inline double hsum(const D4& v) { return (v[0] + v[1]) + (v[2] + v[3]); }
+template <class V>
+[[gnu::always_inline]] inline double hsum(const V& v) {
+  using L = Lanes<V>;
+  return (L::get(v, 0) + L::get(v, 1)) + (L::get(v, 2) + L::get(v, 3));
+}
 
 // The four rows' samples of one channel at column offset `at`, as doubles; NaN, Inf and values beyond FLT_MAX
 // read as 0 (Probe::finite); `odd` collects, when checking, whether any was negative, NaN or Inf. (Vectors go
-// in and out by reference: by value they would change the ABI between the portable and the AVX2 build.)
-template <bool Check>
-[[gnu::always_inline]] inline void samples4(const float* const* p, std::ptrdiff_t at, I4& odd, D4& out) {
-  const F4 f = {p[0][at], p[1][at], p[2][at], p[3][at]};
-  const D4 v = __builtin_convertvector(f, D4), zero = {0, 0, 0, 0};
-  const D4 lo = {-kMax, -kMax, -kMax, -kMax}, hi = {kMax, kMax, kMax, kMax};
-  if constexpr (Check) odd |= ~((v >= zero) & (v <= hi));
-  out = ((v >= lo) & (v <= hi)) ? v : zero;
+// in and out by reference: by value a four-double vector would change the ABI between the two builds.)
+template <class V, bool Check>
+[[gnu::always_inline]] inline void samples4(const float* const* p, std::ptrdiff_t at,
+                                            typename Lanes<V>::Mask& odd, V& out) {
+  using L = Lanes<V>;
+  V v, zero, lo, hi;
+  L::load(p[0][at], p[1][at], p[2][at], p[3][at], v);
+  L::splat(0, zero), L::splat(-kMax, lo), L::splat(kMax, hi);
+  if constexpr (Check) odd = odd | ~((v >= zero) & (v <= hi));
+  L::keep(v, (v >= lo) & (v <= hi), out);
 }
 
-template <bool Grey, bool Squares, bool Check>
+template <class V, bool Grey, bool Squares, bool Check>
 [[gnu::always_inline]] inline bool latLongGroups(const LatLongRows& a) {
+  using L = Lanes<V>;
+  using M = typename L::Mask;
   const std::ptrdiff_t step = a.view.pixelStep();
-  const D4 zero = {0, 0, 0, 0};
-  const D4 wR = {0.2126, 0.2126, 0.2126, 0.2126}, wG = {0.7152, 0.7152, 0.7152, 0.7152},
-           wB = {0.0722, 0.0722, 0.0722, 0.0722};
+  V zero, wR, wG, wB;
+  L::splat(0, zero), L::splat(0.2126, wR), L::splat(0.7152, wG), L::splat(0.0722, wB);
+  const M none = zero > zero;
   const double* cosPhi = a.projection.latLongRow(a.y0).cosPhi;
   const double* sinPhi = a.projection.latLongRow(a.y0).sinPhi;
   const auto pieceBytes = static_cast<std::ptrdiff_t>(a.x1 - a.x0) * step * 4;
-  I4 odd = {0, 0, 0, 0};
+  M odd = none;
   for (int g = a.y0; g < a.y1; g += 4) {
     const int rows = std::min(4, a.y1 - g);
     // A region's rows are short pieces of long image rows, which the hardware prefetcher picks up late:
@@ -72,39 +135,41 @@ template <bool Grey, bool Squares, bool Check>
         for (std::ptrdiff_t b = 0; b < pieceBytes; b += 64) __builtin_prefetch(next + b);
       }
     const float* p[4];
-    D4 dw = zero, dwCos = zero, dwSin = zero;
+    V dw = zero, dwCos = zero, dwSin = zero;
     for (int k = 0; k < 4; ++k) {
       const int y = k < rows ? g + k : g;
       p[k] = a.view.pixel(a.x0, y);
       if (k >= rows) continue;
       const auto row = a.projection.latLongRow(y);
-      dw[k] = row.solidAngle, dwCos[k] = row.solidAngle * row.cosEl, dwSin[k] = row.solidAngle * row.sinEl;
+      L::set(dw, k, row.solidAngle), L::set(dwCos, k, row.solidAngle * row.cosEl);
+      L::set(dwSin, k, row.solidAngle * row.sinEl);
     }
     for (int x = a.x0, c = 0; x < a.x1; ++c) {
       const int end = std::min(a.x1, x + a.cellSize), count = end - x;
-      D4 r = zero, gr = zero, b = zero, sY = zero, sYc = zero, sYs = zero, sY2 = zero, sY2c = zero,
-         sY2s = zero;
-      I4 lit = {0, 0, 0, 0};
+      V r = zero, gr = zero, b = zero, sY = zero, sYc = zero, sYs = zero, sY2 = zero, sY2c = zero,
+        sY2s = zero;
+      M lit = none;
       for (; x < end; ++x) {
         const std::ptrdiff_t at = static_cast<std::ptrdiff_t>(x - a.x0) * step;
-        D4 Rs, Gs, Bs;
-        samples4<Check>(p, at, odd, Rs);
+        V Rs = zero, Gs = zero, Bs = zero;
+        samples4<V, Check>(p, at, odd, Rs);
         if constexpr (Grey) {
           Gs = Rs, Bs = Rs;
         } else {
-          samples4<Check>(p, at + 1, odd, Gs), samples4<Check>(p, at + 2, odd, Bs);
+          samples4<V, Check>(p, at + 1, odd, Gs), samples4<V, Check>(p, at + 2, odd, Bs);
         }
         // Colours keep a negative sample's sign (Probe::light); the weights read it as 0.
-        const D4 R = Rs > zero ? Rs : zero, G = Gs > zero ? Gs : zero, B = Bs > zero ? Bs : zero;
-        const D4 Y = wR * R + wG * G + wB * B;
+        V R, G, B;
+        L::keep(Rs, Rs > zero, R), L::keep(Gs, Gs > zero, G), L::keep(Bs, Bs > zero, B);
+        const V Y = wR * R + wG * G + wB * B;
         const double cp = cosPhi[x], sp = sinPhi[x];
-        r += Rs, gr += Gs, b += Bs;
-        sY += Y, sYc += Y * cp, sYs += Y * sp;
+        r = r + Rs, gr = gr + Gs, b = b + Bs;
+        sY = sY + Y, sYc = sYc + Y * cp, sYs = sYs + Y * sp;
         if constexpr (Squares) {
-          const D4 Y2 = Y * Y;
-          sY2 += Y2, sY2c += Y2 * cp, sY2s += Y2 * sp;
+          const V Y2 = Y * Y;
+          sY2 = sY2 + Y2, sY2c = sY2c + Y2 * cp, sY2s = sY2s + Y2 * sp;
         }
-        lit -= Y > zero;
+        lit = lit - (Y > zero);
       }
       PixelSums& s = a.cells[c];
       s.rgb[0] += hsum(r * dw), s.rgb[1] += hsum(gr * dw), s.rgb[2] += hsum(b * dw);
@@ -115,43 +180,43 @@ template <bool Grey, bool Squares, bool Check>
         s.energy2 += hsum(sY2 * dw);
         s.moment2 += Vec3{hsum(sY2c * dwCos), hsum(sY2s * dwCos), hsum(sY2 * dwSin)};
       }
-      for (int k = 0; k < rows; ++k) s.litPixels += lit[k];
+      for (int k = 0; k < rows; ++k) s.litPixels += L::get(lit, k);
     }
   }
-  return (odd[0] | odd[1] | odd[2] | odd[3]) != 0;
+  return (L::get(odd, 0) | L::get(odd, 1) | L::get(odd, 2) | L::get(odd, 3)) != 0;
 }
 
 // The three choices (grey, squares, check) become the loop's template arguments here, once (a switch, not
 // lambdas: a lambda would be compiled for the default target inside the AVX2 clone too).
+template <class V>
 [[gnu::always_inline]] inline bool latLongChoices(const LatLongRows& a, bool grey, bool squares, bool check) {
   switch ((grey ? 4 : 0) | (squares ? 2 : 0) | (check ? 1 : 0)) {
     case 0:
-      return latLongGroups<false, false, false>(a);
+      return latLongGroups<V, false, false, false>(a);
     case 1:
-      return latLongGroups<false, false, true>(a);
+      return latLongGroups<V, false, false, true>(a);
     case 2:
-      return latLongGroups<false, true, false>(a);
+      return latLongGroups<V, false, true, false>(a);
     case 3:
-      return latLongGroups<false, true, true>(a);
+      return latLongGroups<V, false, true, true>(a);
     case 4:
-      return latLongGroups<true, false, false>(a);
+      return latLongGroups<V, true, false, false>(a);
     case 5:
-      return latLongGroups<true, false, true>(a);
+      return latLongGroups<V, true, false, true>(a);
     case 6:
-      return latLongGroups<true, true, false>(a);
+      return latLongGroups<V, true, true, false>(a);
     default:
-      return latLongGroups<true, true, true>(a);
+      return latLongGroups<V, true, true, true>(a);
   }
 }
 
 bool latLongPortable(const LatLongRows& a, bool grey, bool squares, bool check) {
-  return latLongChoices(a, grey, squares, check);
+  return latLongChoices<Pairs>(a, grey, squares, check);
 }
 
 #if defined(__x86_64__)
-// The same loop with four-double AVX2 vectors (the portable build splits each into two SSE2 pairs).
 __attribute__((target("avx2"))) bool latLongAvx2(const LatLongRows& a, bool grey, bool squares, bool check) {
-  return latLongChoices(a, grey, squares, check);
+  return latLongChoices<D4>(a, grey, squares, check);
 }
 #endif
 
