@@ -24,6 +24,7 @@ MEASURED = {
     (4, 5, 15): {"darkening": 0.0, "noise": 2.0},
     (5, 0, 1): {"darkening": 0.0, "noise": 2.0},
     (5, 2, 3): {"darkening": 0.0, "noise": 2.0},
+    (5, 3, 0): {"darkening": 0.0, "noise": 2.0},
 }
 MATTERS = 0.5  # percent: a darkening below this is not worth a word
 
