@@ -132,9 +132,10 @@ def bake_world(context, settings, progress=lambda fraction: None, rendered=None,
     if noise:
         warnings.append(noise)
     if scene.render.engine == "CYCLES" and settings.light_type == "SUN":
+        # What more suns cost the renders: a note (nothing is wrong with the bake), shown in the panel.
         advice = render_cost.count_note(len(lights), bpy.app.version)
         if advice:
-            warnings.append(advice)
+            notes.append(advice)
     errors = baked["evaluation"] or {}
     return {"count": len(lights), "energy": 100.0 * captured / total if total > 0 else 0.0,
             "ms": 1000.0 * (time.perf_counter() - start),
