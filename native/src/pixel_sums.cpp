@@ -25,8 +25,9 @@ namespace {
 // fewer rows fills its empty lanes with its first row at weight 0 (0 exactly). The four lanes are one vector
 // of four doubles in the AVX2 build and two SSE2 pairs (rows 0-1, rows 2-3) in the portable one (GCC
 // splits a four-double vector without AVX through the stack: the CLI's 8K grid took 2.4x as long as with two
-// pairs); the same operations lane by lane, and no FMA (no contraction), so both give the same bits. Band and whole builds stay bit-identical;
-// a cell of one pixel gets exactly the products the full-resolution table writes (addLatLongPixels).
+// pairs); the same operations lane by lane, and no FMA (no contraction), so both give the same bits. Band
+// and whole builds stay bit-identical; a cell of one pixel gets exactly the products the full-resolution
+// table writes (addLatLongPixels).
 using D2 = double __attribute__((vector_size(16)));
 using I2 = long long __attribute__((vector_size(16)));
 using D4 = double __attribute__((vector_size(32)));
