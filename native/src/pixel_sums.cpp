@@ -271,6 +271,13 @@ void accumulateRows(const Probe& probe, int y0, int y1, int x0, int x1, int cell
   }
 }
 
+bool accumulateLatLongRowsPortable(const Probe& probe, int y0, int y1, int x0, int x1, int cellSize,
+                                   std::span<PixelSums> cells, bool squares) {
+  if (probe.projection().kind() != ProjectionKind::LatLong || y0 >= y1 || x0 >= x1) return false;
+  return latLongPortable({probe.view(), probe.projection(), y0, y1, x0, x1, cellSize, cells.data()},
+                         probe.view().channels < 3, squares, true);
+}
+
 PixelSums sumPixels(const Probe& probe, const Rect& r, bool squares) {
   PixelSums s;
   accumulateRows(probe, r.y0, r.y1, r.x0, r.x1, r.width(), std::span<PixelSums>(&s, 1), squares);

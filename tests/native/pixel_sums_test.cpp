@@ -105,6 +105,44 @@ TEST(PixelSums, LatLongCellsEqualTheirPixelsSummedOneByOne) {
   }
 }
 
+TEST(PixelSums, PortableAndAvx2PathsGiveTheSameBits) {
+  // accumulateRows takes the AVX2 clone on this processor where it has AVX2 (else both calls are the portable
+  // path and this compares it with itself).
+  const int W = 61, H = 23;
+  for (int channels : {1, 4}) {
+    const Buffer b = randomProbe(W, H, channels, 11u + channels);
+    const Probe probe = Probe::unchecked(b.view, ProjectionKind::LatLong);
+    for (auto [y0, y1] : {std::pair{0, 23}, {2, 5}, {7, 8}})
+      for (int cellSize : {1, 3, 4, 16})
+        for (bool squares : {false, true}) {
+          const int cells = (W + cellSize - 1) / cellSize;
+          std::vector<PixelSums> fast(cells), portable(cells);
+          bool oddFast = false;
+          accumulateRows(probe, y0, y1, 0, W, cellSize, fast, squares, &oddFast);
+          const bool oddPortable =
+              accumulateLatLongRowsPortable(probe, y0, y1, 0, W, cellSize, portable, squares);
+          EXPECT_EQ(oddFast, oddPortable);
+          for (int c = 0; c < cells; ++c) {
+            const PixelSums &f = fast[c], &p = portable[c];
+            const std::string what = "channels " + std::to_string(channels) + ", rows " + std::to_string(y0) +
+                                     "-" + std::to_string(y1) + ", cells of " + std::to_string(cellSize) +
+                                     ", cell " + std::to_string(c);
+            EXPECT_EQ(f.rgb, p.rgb) << what;
+            EXPECT_EQ(f.solidAngle, p.solidAngle) << what;
+            EXPECT_EQ(f.energy, p.energy) << what;
+            EXPECT_EQ(f.moment.x, p.moment.x) << what;
+            EXPECT_EQ(f.moment.y, p.moment.y) << what;
+            EXPECT_EQ(f.moment.z, p.moment.z) << what;
+            EXPECT_EQ(f.energy2, p.energy2) << what;
+            EXPECT_EQ(f.moment2.x, p.moment2.x) << what;
+            EXPECT_EQ(f.moment2.y, p.moment2.y) << what;
+            EXPECT_EQ(f.moment2.z, p.moment2.z) << what;
+            EXPECT_EQ(f.litPixels, p.litPixels) << what;
+          }
+        }
+  }
+}
+
 TEST(PixelSums, OddSamplesSaysWhetherAnySampleReadWasNegativeNaNOrInf) {
   const int W = 16, H = 9;
   std::vector<float> pixels(static_cast<std::size_t>(W) * H * 3, 1.0f);
