@@ -4,10 +4,166 @@
 #include <charconv>
 #include <span>
 
+#include "lanes.h"
 #include "parallel.h"
 #include "probelights/error.h"
 
 namespace probelights {
+
+namespace {
+
+using namespace lanes;
+
+// One row of the full-resolution lat-long table (MomentTable::addLatLongPixels), and what it adds up.
+struct TableRow {
+  const float* pixels;
+  std::ptrdiff_t step;
+  int width;
+  const double *cosPhi, *sinPhi;
+  double dw, dwCos, dwSin;
+  double* out;          // the table row's entries, pixel x at out[(x + 1) * 5]
+  const double* above;  // the row above's final entries (Above), or none (pass 1 of two)
+};
+struct RowTotals {
+  double rgb[3], energy;
+  long long lit;
+  bool odd;  // a negative, NaN or Inf sample in the row (for the pixels' check)
+};
+
+// Four pixels at a time, one per lane: their samples, luminance and four weighted moments (w, w dx, w dy,
+// w dz: the products accumulateRows makes for a cell of one pixel) as vectors, then turned (transpose) into
+// one vector per pixel, so the running sums along the row are one vector add per pixel, channel by channel
+// in pixel order. The row's totals are four partial sums, one per lane, added at the end.
+template <class V, bool Grey, bool Above>
+struct TableRowLoop {
+  using L = Lanes<V>;
+  using M = typename L::Mask;
+  const TableRow& a;
+  // Locals, not a's fields: the stores to the table could alias `a` and have them re-read every pixel.
+  const float* const pixels = a.pixels;
+  const double* const cosPhiAt = a.cosPhi;
+  const double* const sinPhiAt = a.sinPhi;
+  const double* const above = a.above;
+  double* __restrict const out = a.out;
+  const std::ptrdiff_t step = a.step;
+  V zero, one, lo, hi, wR, wG, wB, dw, dwCos, dwSin;
+  V run, sumR, sumG, sumB, sumE;
+  M odd, lit;
+  double runLit = 0;
+
+  explicit TableRowLoop(const TableRow& row) : a(row) {
+    L::splat(0, zero), L::splat(1, one), L::splat(-kMax, lo), L::splat(kMax, hi);
+    L::splat(0.2126, wR), L::splat(0.7152, wG), L::splat(0.0722, wB);
+    L::splat(a.dw, dw), L::splat(a.dwCos, dwCos), L::splat(a.dwSin, dwSin);
+    run = sumR = sumG = sumB = sumE = zero;
+    odd = lit = zero > zero;
+  }
+
+  // Channel c of pixels x .. x + n - 1 (0 past them): NaN, Inf and beyond FLT_MAX read as 0 (Probe::finite);
+  // `odd` collects negative, NaN or Inf.
+  template <int N>
+  [[gnu::always_inline]] void channel(int x, int n, int c, V& s) {
+    const float* p = pixels + static_cast<std::ptrdiff_t>(x) * step + c;
+    V raw;
+    if constexpr (N == 4)
+      L::load(p[0], p[step], p[2 * step], p[3 * step], raw);
+    else
+      L::load(p[0], n > 1 ? p[step] : 0.0f, n > 2 ? p[2 * step] : 0.0f, 0.0f, raw);
+    odd = odd | ~((raw >= zero) & (raw <= hi));
+    L::keep(raw, (raw >= lo) & (raw <= hi), s);
+  }
+
+  [[gnu::always_inline]] void write(int x, const V& value, double lit1) {
+    run = run + value;
+    runLit += lit1;
+    const std::ptrdiff_t at = (static_cast<std::ptrdiff_t>(x) + 1) * 5;
+    if constexpr (Above) {
+      V up;
+      L::loadu(above + at, up);
+      L::storeu(out + at, up + run);
+      out[at + 4] = above[at + 4] + runLit;
+    } else {
+      L::storeu(out + at, run);
+      out[at + 4] = runLit;
+    }
+  }
+
+  // Pixels x .. x + n - 1: all four lanes (N = 4), or the row's last n < 4 (N = 0).
+  template <int N>
+  [[gnu::always_inline]] void group(int x, int n) {
+    V Rs, Gs, Bs, cosPhi, sinPhi;
+    channel<N>(x, n, 0, Rs);
+    if constexpr (Grey) {
+      Gs = Rs, Bs = Rs;
+    } else {
+      channel<N>(x, n, 1, Gs), channel<N>(x, n, 2, Bs);
+    }
+    if constexpr (N == 4) {
+      L::loadu(cosPhiAt + x, cosPhi), L::loadu(sinPhiAt + x, sinPhi);
+    } else {
+      cosPhi = sinPhi = zero;
+      for (int k = 0; k < n; ++k) L::set(cosPhi, k, cosPhiAt[x + k]), L::set(sinPhi, k, sinPhiAt[x + k]);
+    }
+    V R, G, B, lit1;
+    L::keep(Rs, Rs > zero, R), L::keep(Gs, Gs > zero, G), L::keep(Bs, Bs > zero, B);
+    const V Y = wR * R + wG * G + wB * B;
+    V e = Y * dw, mx = (Y * cosPhi) * dwCos, my = (Y * sinPhi) * dwCos, mz = Y * dwSin;
+    const M isLit = Y > zero;
+    L::keep(one, isLit, lit1);
+    lit = lit - isLit;
+    sumR = sumR + Rs * dw, sumG = sumG + Gs * dw, sumB = sumB + Bs * dw, sumE = sumE + e;
+    L::transpose(e, mx, my, mz);  // now one vector per pixel: (w, w dx, w dy, w dz)
+    write(x, e, L::get(lit1, 0));
+    if (N == 4 || n > 1) write(x + 1, mx, L::get(lit1, 1));
+    if (N == 4 || n > 2) write(x + 2, my, L::get(lit1, 2));
+    if (N == 4) write(x + 3, mz, L::get(lit1, 3));
+  }
+
+  [[gnu::always_inline]] void operator()(RowTotals& t) {
+    int x = 0;
+    for (; x + 4 <= a.width; x += 4) group<4>(x, 4);
+    if (x < a.width) group<0>(x, a.width - x);
+    t = {{hsum(sumR), hsum(sumG), hsum(sumB)},
+         hsum(sumE),
+         -(L::get(lit, 0) + L::get(lit, 1) + L::get(lit, 2) + L::get(lit, 3)),
+         (L::get(odd, 0) | L::get(odd, 1) | L::get(odd, 2) | L::get(odd, 3)) != 0};
+  }
+};
+
+// Four pixels at a time, one per lane: their samples, luminance and four weighted moments (w, w dx, w dy,
+// w dz: the products accumulateRows makes for a cell of one pixel) as vectors, then turned (transpose) into
+// one vector per pixel, so the running sums along the row are one vector add per pixel, channel by channel
+// in pixel order. The row's totals are four partial sums, one per lane, added at the end.
+template <class V, bool Grey, bool Above>
+[[gnu::always_inline]] inline void tableRow(const TableRow& a, RowTotals& t) {
+  TableRowLoop<V, Grey, Above> loop(a);
+  loop(t);
+}
+
+template <class V>
+[[gnu::always_inline]] inline void tableRowChoices(const TableRow& a, bool grey, RowTotals& t) {
+  if (grey)
+    a.above ? tableRow<V, true, true>(a, t) : tableRow<V, true, false>(a, t);
+  else
+    a.above ? tableRow<V, false, true>(a, t) : tableRow<V, false, false>(a, t);
+}
+
+void tableRowPortable(const TableRow& a, bool grey, RowTotals& t) { tableRowChoices<Pairs>(a, grey, t); }
+
+#if defined(__x86_64__)
+__attribute__((target("avx2"))) void tableRowAvx2(const TableRow& a, bool grey, RowTotals& t) {
+  tableRowChoices<D4>(a, grey, t);
+}
+#endif
+
+void sumTableRow(const TableRow& a, bool grey, RowTotals& t) {
+#if defined(__x86_64__)
+  if (hasAvx2()) return tableRowAvx2(a, grey, t);
+#endif
+  tableRowPortable(a, grey, t);
+}
+
+}  // namespace
 
 int WorkingResolution::cellSize(int probeWidth) const {
   constexpr int kAutoWidth = 2048;
@@ -114,43 +270,25 @@ void MomentTable::addBand(const Probe& band, int y0, int y1) {
 }
 
 void MomentTable::addLatLongPixels(const Probe& band, int y0, int y1) {
-  // Full resolution, lat-long: each cell is one pixel, so its five table values are written straight from the
-  // pixel with the same operations, in the same order, as accumulateRows would sum them into a cell of one
-  // (bit-identical), without its per-cell sums of everything a light needs (lights re-read their pixels).
+  // Full resolution, lat-long: each cell is one pixel, so its table values are made straight from the
+  // pixel with the products accumulateRows makes for a cell of one pixel (tableRow) and summed along the row
+  // in the same loop, without its per-cell sums of everything a light needs (lights re-read their pixels).
   const ImageView& view = band.view();
-  const std::ptrdiff_t step = view.pixelStep();
   const bool grey = view.channels < 3;
-  using Values = SummedAreaTable<5>::Values;
-  sat_.fillRows(y0, y1, [&](int y, std::span<Values> out) {
+  const auto first = band.projection().latLongRow(y0);
+  sat_.fillRowSums(y0, y1, [&](int y, double* out, const double* above) {
     const auto row = band.projection().latLongRow(y);
-    const double dw = row.solidAngle, dwCos = dw * row.cosEl, dwSin = dw * row.sinEl;
-    const float* p = view.pixel(0, y);
-    double r = 0, g = 0, b = 0, energy = 0;
-    long long lit = 0;
-    bool odd = false;  // a negative, NaN or Inf sample in the row (for the pixels' check)
-    for (int x = 0; x < pixelWidth_; ++x, p += step) {
-      for (int k = 0; k < (grey ? 1 : 3); ++k) odd |= !(p[k] >= 0.0f && p[k] <= 3.4028234e38f);
-      const double Rs = Probe::finite(p[0]), Gs = grey ? Rs : Probe::finite(p[1]),
-                   Bs = grey ? Rs : Probe::finite(p[2]);
-      const double R = Rs > 0 ? Rs : 0.0, G = Gs > 0 ? Gs : 0.0, B = Bs > 0 ? Bs : 0.0;
-      const double Y = luminance(R, G, B);
-      double sY = 0, sYc = 0, sYs = 0;
-      sY += Y, sYc += Y * row.cosPhi[x], sYs += Y * row.sinPhi[x];
-      double e = 0, mx = 0, my = 0, mz = 0;
-      e += sY * dw, mx += dwCos * sYc, my += dwCos * sYs, mz += dwSin * sY;
-      out[x] = {e, mx, my, mz, Y > 0 ? 1.0 : 0.0};
-      double cr = 0, cg = 0, cb = 0, sr = 0, sg = 0, sb = 0;
-      sr += Rs, sg += Gs, sb += Bs;
-      cr += sr * dw, cg += sg * dw, cb += sb * dw;
-      r += cr, g += cg, b += cb, energy += e;
-      lit += Y > 0;
-    }
+    const double dw = row.solidAngle;
+    RowTotals t;
+    sumTableRow({view.pixel(0, y), view.pixelStep(), pixelWidth_, first.cosPhi, first.sinPhi, dw,
+                 dw * row.cosEl, dw * row.sinEl, out, above},
+                grey, t);
     PixelSums total;
-    total.rgb = {r, g, b};
-    total.energy = energy;
+    total.rgb = {t.rgb[0], t.rgb[1], t.rgb[2]};
+    total.energy = t.energy;
     rowTotals_[y] = total;
-    rowLitCells_[y] = lit;
-    checkRows(band, y, odd, y, y + 1, energy);
+    rowLitCells_[y] = t.lit;
+    checkRows(band, y, t.odd, y, y + 1, t.energy);
   });
 }
 

@@ -4,6 +4,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "lanes.h"
+
 namespace probelights {
 
 PixelSums& PixelSums::operator+=(const PixelSums& o) {
@@ -22,70 +24,11 @@ namespace {
 // The lat-long loop. A pixel's weights are its row's (dOmega, cos el, sin el) and its column's (cos phi,
 // sin phi), so rows are taken four at a time, one row per lane: each lane sums its row's pixels of a cell,
 // the lanes are scaled by their rows' weights and added once per cell, ((l0 + l1) + (l2 + l3)). A group of
-// fewer rows fills its empty lanes with its first row at weight 0 (0 exactly). The four lanes are one vector
-// of four doubles in the AVX2 build and two SSE2 pairs (rows 0-1, rows 2-3) in the portable one (GCC
-// splits a four-double vector without AVX through the stack: the CLI's 8K grid took 2.4x as long as with two
-// pairs); the same operations lane by lane, and no FMA (no contraction), so both give the same bits. Band
-// and whole builds stay bit-identical; a cell of one pixel gets exactly the products the full-resolution
-// table writes (addLatLongPixels).
-using D2 = double __attribute__((vector_size(16)));
-using I2 = long long __attribute__((vector_size(16)));
-using D4 = double __attribute__((vector_size(32)));
-using I4 = long long __attribute__((vector_size(32)));
-using F4 = float __attribute__((vector_size(16)));
-constexpr double kMax = 3.4028234663852886e38;  // FLT_MAX: Probe::finite's bounds
-
-// Four lanes as two pairs, with the operations the loop uses.
-struct Pairs {
-  D2 lo, hi;
-};
-struct PairMasks {
-  I2 lo, hi;
-};
-#define PROBELIGHTS_LANEWISE(R, op, A, B) \
-  [[gnu::always_inline]] inline R operator op(const A& a, const B& b) { return {a.lo op b.lo, a.hi op b.hi}; }
-PROBELIGHTS_LANEWISE(Pairs, +, Pairs, Pairs)
-PROBELIGHTS_LANEWISE(Pairs, *, Pairs, Pairs)
-PROBELIGHTS_LANEWISE(PairMasks, >, Pairs, Pairs)
-PROBELIGHTS_LANEWISE(PairMasks, >=, Pairs, Pairs)
-PROBELIGHTS_LANEWISE(PairMasks, <=, Pairs, Pairs)
-PROBELIGHTS_LANEWISE(PairMasks, &, PairMasks, PairMasks)
-PROBELIGHTS_LANEWISE(PairMasks, |, PairMasks, PairMasks)
-PROBELIGHTS_LANEWISE(PairMasks, -, PairMasks, PairMasks)
-#undef PROBELIGHTS_LANEWISE
-[[gnu::always_inline]] inline PairMasks operator~(const PairMasks& m) { return {~m.lo, ~m.hi}; }
-[[gnu::always_inline]] inline Pairs operator*(const Pairs& a, double s) { return {a.lo * s, a.hi * s}; }
-
-// What the loop needs of a lane type beyond its operators: V is D4 (AVX2) or Pairs (portable).
-template <class V>
-struct Lanes;
-template <>
-struct Lanes<D4> {  // values out by reference: by value a four-double vector changes the ABI without AVX
-  using Mask = I4;
-  static void splat(double x, D4& out) { out = D4{x, x, x, x}; }
-  static void load(float a, float b, float c, float d, D4& out) {
-    out = __builtin_convertvector((F4{a, b, c, d}), D4);
-  }
-  static void keep(const D4& v, const I4& m, D4& out) {
-    out = reinterpret_cast<D4>(reinterpret_cast<I4>(v) & m);
-  }
-  static double get(const D4& v, int k) { return v[k]; }
-  static void set(D4& v, int k, double x) { v[k] = x; }
-  static long long get(const I4& m, int k) { return m[k]; }
-};
-template <>
-struct Lanes<Pairs> {
-  using Mask = PairMasks;
-  static void splat(double x, Pairs& out) { out = {D2{x, x}, D2{x, x}}; }
-  static void load(float a, float b, float c, float d, Pairs& out) { out = {D2{a, b}, D2{c, d}}; }
-  static void keep(const Pairs& v, const PairMasks& m, Pairs& out) {
-    out = {reinterpret_cast<D2>(reinterpret_cast<I2>(v.lo) & m.lo),
-           reinterpret_cast<D2>(reinterpret_cast<I2>(v.hi) & m.hi)};
-  }
-  static double get(const Pairs& v, int k) { return k < 2 ? v.lo[k] : v.hi[k - 2]; }
-  static void set(Pairs& v, int k, double x) { (k < 2 ? v.lo[k] : v.hi[k - 2]) = x; }
-  static long long get(const PairMasks& m, int k) { return k < 2 ? m.lo[k] : m.hi[k - 2]; }
-};
+// fewer rows fills its empty lanes with its first row at weight 0 (0 exactly). The lanes are lanes.h's: a
+// vector of four doubles in the AVX2 clone, two SSE2 pairs (rows 0-1, rows 2-3) in the portable build, the
+// same bits either way. Band and whole builds stay bit-identical; a cell of one pixel gets exactly the
+// products the full-resolution table writes (MomentTable's lat-long rows).
+using namespace lanes;
 
 struct LatLongRows {
   const ImageView& view;
@@ -93,12 +36,6 @@ struct LatLongRows {
   int y0, y1, x0, x1, cellSize;
   PixelSums* cells;
 };
-
-template <class V>
-[[gnu::always_inline]] inline double hsum(const V& v) {
-  using L = Lanes<V>;
-  return (L::get(v, 0) + L::get(v, 1)) + (L::get(v, 2) + L::get(v, 3));
-}
 
 // The four rows' samples of one channel at column offset `at`, as doubles; NaN, Inf and values beyond FLT_MAX
 // read as 0 (Probe::finite); `odd` collects, when checking, whether any was negative, NaN or Inf. (Vectors go
@@ -223,11 +160,7 @@ __attribute__((target("avx2"))) bool latLongAvx2(const LatLongRows& a, bool grey
 
 bool latLongRows(const LatLongRows& a, bool grey, bool squares, bool check) {
 #if defined(__x86_64__)
-  static const bool avx2 = [] {
-    __builtin_cpu_init();
-    return __builtin_cpu_supports("avx2") != 0;
-  }();
-  if (avx2) return latLongAvx2(a, grey, squares, check);
+  if (hasAvx2()) return latLongAvx2(a, grey, squares, check);
 #endif
   return latLongPortable(a, grey, squares, check);
 }
@@ -269,13 +202,6 @@ void accumulateRows(const Probe& probe, int y0, int y1, int x0, int x1, int cell
       s.litPixels += w > 0;
     }
   }
-}
-
-bool accumulateLatLongRowsPortable(const Probe& probe, int y0, int y1, int x0, int x1, int cellSize,
-                                   std::span<PixelSums> cells, bool squares) {
-  if (probe.projection().kind() != ProjectionKind::LatLong || y0 >= y1 || x0 >= x1) return false;
-  return latLongPortable({probe.view(), probe.projection(), y0, y1, x0, x1, cellSize, cells.data()},
-                         probe.view().channels < 3, squares, true);
 }
 
 PixelSums sumPixels(const Probe& probe, const Rect& r, bool squares) {

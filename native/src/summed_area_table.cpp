@@ -24,20 +24,27 @@ SummedAreaTable<K>::SummedAreaTable(int width, int height)
 
 template <int K>
 void SummedAreaTable<K>::fillRows(int y0, int y1, const RowValues& rowValues) {
-  // Table row y + 1 gets the prefix sums along row y, added to the row above when `above` is given.
-  auto writeRow = [&](int y, const double* above) {
+  fillRowSums(y0, y1, [&](int y, double* out, const double* above) {
     thread_local std::vector<Values> row;
     row.assign(static_cast<std::size_t>(width_), Values{});
     rowValues(y, std::span<Values>(row));
-    double* out = entry(0, y + 1);
     Values running{};
-    std::fill_n(out, K, 0.0);
     for (int x = 0; x < width_; ++x)
       for (int k = 0; k < K; ++k) {
         running[k] += row[x][k];
         const std::size_t c = static_cast<std::size_t>(x + 1) * K + k;
         out[c] = above ? above[c] + running[k] : running[k];
       }
+  });
+}
+
+template <int K>
+void SummedAreaTable<K>::fillRowSums(int y0, int y1, const RowSums& rowSums) {
+  // Table row y + 1 gets the prefix sums along row y, added to the row above when `above` is given.
+  auto writeRow = [&](int y, const double* above) {
+    double* out = entry(0, y + 1);
+    std::fill_n(out, K, 0.0);
+    rowSums(y, out, above);
   };
   if (oneThread && y0 == finalRows_) {
     // Rows in order on one thread (one_thread.h): each row's prefix sums go straight onto the running sums of

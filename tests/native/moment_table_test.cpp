@@ -1,12 +1,17 @@
-// The moment tables the cuts are decided on: the variance about the centroid, and the 8K sun-and-sky stress
-// probe (double prefix sums keep a dim sky's sums next to a bright sun).
+// The moment tables the cuts are decided on: the variance about the centroid, the full-resolution lat-long
+// table against its pixels summed one by one (and the same bits on its AVX2 and portable paths, on one
+// thread or two passes), and the 8K sun-and-sky stress probe (double prefix sums keep a dim sky's sums next
+// to a bright sun).
 #include "probelights/moment_table.h"
 
 #include <gtest/gtest.h>
 
 #include <limits>
+#include <optional>
 #include <random>
 
+#include "../../native/src/lanes.h"
+#include "probelights/one_thread.h"
 #include "test_probes.h"
 
 namespace probelights {
@@ -37,6 +42,118 @@ TEST(MomentTable, VarianceIsTheSpreadAboutTheCentroidOnTheSphere) {
       }
     EXPECT_NEAR(table.moments(r).energy, w, 1e-12 * w);
     EXPECT_NEAR(table.moments(r).variance(), spread, 1e-10 * w);
+  }
+}
+
+// RGBA pixels (or one grey channel), rows bottom first read through a flipped view (Blender's layout), some
+// samples negative, a NaN and an Inf.
+struct Buffer {
+  std::vector<float> data;
+  ImageView view;
+};
+
+Buffer randomProbe(int W, int H, int channels, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(-0.2f, 3.0f);
+  Buffer b;
+  b.data.resize(static_cast<std::size_t>(W) * H * channels);
+  for (float& f : b.data) f = u(rng);
+  b.data[5 * channels] = std::numeric_limits<float>::quiet_NaN();
+  b.data[(static_cast<std::size_t>(W) * 3 + 7) * channels] = std::numeric_limits<float>::infinity();
+  b.view = ImageView{b.data.data() + static_cast<std::size_t>(H - 1) * W * channels, W, H, channels};
+  b.view.rowStride = -static_cast<std::ptrdiff_t>(W) * channels;
+  return b;
+}
+
+// Every prefix rectangle [0, x) x [0, y): together they are the whole table.
+std::vector<RegionMoments> prefixes(const MomentTable& t) {
+  std::vector<RegionMoments> out;
+  for (int y = 0; y <= t.height(); ++y)
+    for (int x = 0; x <= t.width(); ++x) out.push_back(t.moments({0, 0, x, y}));
+  return out;
+}
+
+TEST(MomentTable, FullResolutionLatLongTableEqualsItsPixelsSummedOneByOne) {
+  // Widths that end on a whole group of four pixels, and on 1, 2 and 3 left over.
+  for (int W : {36, 37, 38, 39})
+    for (int channels : {1, 4}) {
+      const int H = W / 2;
+      const Buffer b = randomProbe(W, H, channels, 3u + W + channels);
+      const Probe probe = Probe::unchecked(b.view, ProjectionKind::LatLong);
+      PixelReport counts;
+      const MomentTable table(probe, 1, CentroidWeight::Energy, &counts);
+      const std::string what = std::to_string(W) + " wide, " + std::to_string(channels) + " channels";
+      // Per pixel: w = Y dOmega, w d, lit; the probe's integral of the signed samples.
+      std::vector<double> w(W * H);
+      std::vector<Vec3> wd(W * H);
+      Rgb integral{};
+      for (int y = 0; y < H; ++y) {
+        const auto row = probe.projection().latLongRow(y);
+        for (int x = 0; x < W; ++x) {
+          const float* p = b.view.pixel(x, y);
+          Rgb L;
+          for (int k = 0; k < 3; ++k) L[k] = Probe::finite(p[channels < 3 ? 0 : k]);
+          const double Y = luminance(std::max(0.0, L[0]), std::max(0.0, L[1]), std::max(0.0, L[2]));
+          w[y * W + x] = Y * row.solidAngle;
+          wd[y * W + x] =
+              w[y * W + x] * Vec3{row.cosEl * row.cosPhi[x], row.cosEl * row.sinPhi[x], row.sinEl};
+          for (int k = 0; k < 3; ++k) integral[k] += L[k] * row.solidAngle;
+        }
+      }
+      double total = 0;
+      for (double v : w) total += v;
+      for (int k = 0; k < 3; ++k) EXPECT_NEAR(table.integral()[k], integral[k], 1e-12 * 4 * kPi) << what;
+      EXPECT_NEAR(table.totalEnergy(), total, 1e-12 * total) << what;
+      for (const Rect& r : {Rect{0, 0, W, H}, Rect{1, 2, W - 1, H - 3}, Rect{W - 3, 0, W, H},
+                            Rect{4, 5, 5, 6}, Rect{W - 1, H - 1, W, H}}) {
+        double e = 0;
+        Vec3 m;
+        long long lit = 0;
+        for (int y = r.y0; y < r.y1; ++y)
+          for (int x = r.x0; x < r.x1; ++x) e += w[y * W + x], m += wd[y * W + x], lit += w[y * W + x] > 0;
+        const RegionMoments got = table.moments(r);
+        EXPECT_NEAR(got.energy, e, 1e-12 * total) << what;
+        EXPECT_NEAR(got.moment.x, m.x, 1e-12 * total) << what;
+        EXPECT_NEAR(got.moment.y, m.y, 1e-12 * total) << what;
+        EXPECT_NEAR(got.moment.z, m.z, 1e-12 * total) << what;
+        EXPECT_EQ(got.litCells, lit) << what;
+      }
+      // The pixels' check made in the same pass: the negative samples, the NaN and the Inf.
+      const PixelReport expected = probe.countPixels();
+      EXPECT_EQ(counts.negativeSamples, expected.negativeSamples) << what;
+      EXPECT_EQ(counts.nonFiniteSamples, 2) << what;
+      EXPECT_EQ(counts.nonFiniteSamples, expected.nonFiniteSamples) << what;
+    }
+}
+
+TEST(MomentTable, FullResolutionLatLongTableIsTheSameBitsOnEveryPath) {
+  // The AVX2 clone (where the processor has it) and the portable build; on one thread (each row summed onto
+  // the row above as it comes) and in two passes on the threads.
+  const int W = 39, H = 20;
+  for (int channels : {1, 4}) {
+    const Buffer b = randomProbe(W, H, channels, 5u + channels);
+    const Probe probe = Probe::unchecked(b.view, ProjectionKind::LatLong);
+    const std::vector<RegionMoments> reference = prefixes(MomentTable(probe, 1));
+    const Rgb integral = MomentTable(probe, 1).integral();
+    for (bool portable : {false, true})
+      for (bool one : {false, true}) {
+        lanes::portableOnly() = portable;
+        std::optional<OnOneThread> scope;
+        if (one) scope.emplace();
+        const MomentTable table(probe, 1);
+        lanes::portableOnly() = false;
+        const std::vector<RegionMoments> got = prefixes(table);
+        const std::string what = std::to_string(channels) + " channels" + (portable ? ", portable" : "") +
+                                 (one ? ", one thread" : "");
+        EXPECT_EQ(table.integral(), integral) << what;
+        for (std::size_t i = 0; i < got.size(); ++i) {
+          EXPECT_EQ(got[i].energy, reference[i].energy) << what << ", entry " << i;
+          EXPECT_EQ(got[i].moment.x, reference[i].moment.x) << what << ", entry " << i;
+          EXPECT_EQ(got[i].moment.y, reference[i].moment.y) << what << ", entry " << i;
+          EXPECT_EQ(got[i].moment.z, reference[i].moment.z) << what << ", entry " << i;
+          EXPECT_EQ(got[i].litCells, reference[i].litCells) << what << ", entry " << i;
+        }
+      }
   }
 }
 

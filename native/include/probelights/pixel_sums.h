@@ -31,12 +31,6 @@ struct PixelSums {
 void accumulateRows(const Probe& probe, int y0, int y1, int x0, int x1, int cellSize,
                     std::span<PixelSums> cells, bool squares = true, bool* oddSamples = nullptr);
 
-// For the tests: accumulateRows' lat-long loop on its portable path (two SSE2 pairs), whatever the processor
-// has (accumulateRows takes the AVX2 clone where there is one; both must give the same bits). Returns
-// accumulateRows' oddSamples; a probe of another projection or an empty range adds nothing and returns false.
-bool accumulateLatLongRowsPortable(const Probe& probe, int y0, int y1, int x0, int x1, int cellSize,
-                                   std::span<PixelSums> cells, bool squares);
-
 // The sums over a rectangle of pixels.
 PixelSums sumPixels(const Probe& probe, const Rect& pixels, bool squares = true);
 

@@ -47,6 +47,12 @@ class SummedAreaTable {
   // the columns as they come (one pass), and finish() has only the rest to do.
   SummedAreaTable(int width, int height);
   void fillRows(int y0, int y1, const RowValues& rowValues);
+  // fillRows for callers that sum a row themselves (a loop that makes each value and adds it in one go):
+  // rowSums(y, out, above) writes out[(x + 1) * K + k] for x in [0, width), channel k: the running sum of row
+  // y's values of channel k over [0, x], added last to above[(x + 1) * K + k] when `above` is given (the
+  // row above's final sums), that is `above[c] + running` as fillRows adds them; out[0..K) is written here.
+  using RowSums = std::function<void(int, double*, const double*)>;
+  void fillRowSums(int y0, int y1, const RowSums& rowSums);
   void finish();
 
   int width() const { return width_; }
