@@ -1,9 +1,11 @@
 #include "probelights/image.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <future>
 #include <memory>
 
@@ -21,25 +23,52 @@ std::string oneLine(std::string why) {
   return why;
 }
 
-// Opens `path` and checks it is a 2D image with pixels; its spec is in->spec().
-std::unique_ptr<OIIO::ImageInput> openImage(const std::string& path) {
+// An open image file: OpenImageIO's reader, and the file's bytes when it reads them from memory.
+struct OpenImage {
+  std::vector<unsigned char> bytes;
+  std::unique_ptr<OIIO::Filesystem::IOMemReader> memory;
+  std::unique_ptr<OIIO::ImageInput> in;  // destroyed first (members go in reverse order)
+};
+
+// A file of at most this many bytes is read whole with one read and decoded from memory by OpenImageIO (an
+// IOProxy), where its reader for the format takes one: its own reads go through stdio a few bytes at a
+// time, which for a 1K .hdr was a third of its read (100 1K probes: 5.9 -> 4.2 ms a file). Larger files
+// keep OpenImageIO's reads, so a big probe's bytes are never held beside its pixels.
+constexpr std::uintmax_t kReadWholeBytes = 32u << 20;
+
+// Opens `path` and checks it is a 2D image with pixels; its spec is in->spec(). fromMemory: read a small
+// file whole first (kReadWholeBytes).
+OpenImage openImage(const std::string& path, bool fromMemory = false) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw Error("cannot read probe '" + path + "': no such file");
   if (std::filesystem::is_directory(path, ec))
     throw Error("cannot read probe '" + path + "': it is a directory");
 
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) {
+  OpenImage o;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (fromMemory && !ec && size > 0 && size <= kReadWholeBytes) {
+    auto in = OIIO::ImageInput::create(path, false);
+    std::ifstream file(path, std::ios::binary);
+    o.bytes.resize(static_cast<std::size_t>(size));
+    if (in && in->supports("ioproxy") && file.read(reinterpret_cast<char*>(o.bytes.data()), size)) {
+      o.memory = std::make_unique<OIIO::Filesystem::IOMemReader>(o.bytes.data(), o.bytes.size());
+      OIIO::ImageSpec spec, config;
+      if (in->set_ioproxy(o.memory.get()) && in->open(path, spec, config)) o.in = std::move(in);
+    }
+    if (!o.in) o = OpenImage{};  // not this way: opened as usual below, with its usual errors
+  }
+  if (!o.in) o.in = OIIO::ImageInput::open(path);
+  if (!o.in) {
     std::string why = oneLine(OIIO::geterror());
     if (why.empty()) why = "not an image OpenImageIO can read";
     throw Error("cannot read probe '" + path + "': " + why);
   }
-  const OIIO::ImageSpec& spec = in->spec();
+  const OIIO::ImageSpec& spec = o.in->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
     throw Error("cannot read probe '" + path + "': the image is empty (" + std::to_string(spec.width) + "x" +
                 std::to_string(spec.height) + ")");
   if (spec.depth > 1) throw Error("cannot read probe '" + path + "': volume images are not probes");
-  return in;
+  return o;
 }
 
 Image description(const OIIO::ImageInput& in) {
@@ -74,7 +103,8 @@ bool readFloatRows(OIIO::ImageInput& in, int y0, int y1, float* out) {
 }  // namespace
 
 Image readImage(const std::string& path) {
-  auto in = openImage(path);
+  OpenImage file = openImage(path, true);
+  auto& in = file.in;
   const OIIO::ImageSpec& spec = in->spec();
   Image image = description(*in);
   image.pixels = keptArray<float>(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
@@ -87,14 +117,15 @@ Image readImage(const std::string& path) {
 }
 
 Image describeImage(const std::string& path, bool* canReadInBands) {
-  auto in = openImage(path);
+  auto in = openImage(path).in;
   if (canReadInBands) *canReadInBands = in->spec().tile_width == 0 && !in->spec().deep;
   return description(*in);
 }
 
 Image readImageBands(const std::string& path, int bandRows,
                      const std::function<void(const ImageView&)>& consume) {
-  auto in = openImage(path);
+  OpenImage file = openImage(path, true);
+  auto& in = file.in;
   const OIIO::ImageSpec& spec = in->spec();
   if (spec.tile_width != 0 || spec.deep)
     throw Error("cannot read probe '" + path + "' band by band: it is tiled or deep (read it whole)");
