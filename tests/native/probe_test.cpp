@@ -306,11 +306,14 @@ TEST(Probe, FilesFormatsOpenImageIOReadsGiveTheSameLights) {
       pfm.write(reinterpret_cast<const char*>(&rgb[y * W * 3]), W * 3 * sizeof(float));
   }
   // Float samples (.hdr, float EXR and TIFF, PFM) are read natively, the rest converted (image.cpp): every
-  // pixel in its place either way.
+  // pixel in its place either way. Small files are decoded from memory where the format's reader can (an
+  // IOProxy), else as usual: an EXR named .hdr fails the .hdr reader's memory open and is opened by content.
+  writeImage(dir / "exr_named.exr", W, H, 3, rgb, OIIO::TypeDesc::HALF);
+  fs::rename(dir / "exr_named.exr", dir / "exr_named.hdr");
   for (auto [name, type] :
        {std::pair{"p.exr", OIIO::TypeDesc::HALF}, std::pair{"p_float.exr", OIIO::TypeDesc::FLOAT},
         std::pair{"p.tif", OIIO::TypeDesc::FLOAT}, std::pair{"p.pfm", OIIO::TypeDesc::UNKNOWN},
-        std::pair{"p.hdr", OIIO::TypeDesc::FLOAT}}) {
+        std::pair{"p.hdr", OIIO::TypeDesc::FLOAT}, std::pair{"exr_named.hdr", OIIO::TypeDesc::UNKNOWN}}) {
     if (type != OIIO::TypeDesc::UNKNOWN) writeImage(dir / name, W, H, 3, rgb, type);
     Probe p = Probe::load((dir / name).string());
     EXPECT_EQ(p.projection().kind(), ProjectionKind::LatLong);
