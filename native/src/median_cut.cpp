@@ -4,21 +4,22 @@
 
 namespace probelights {
 
-std::optional<Cut> MedianCutRule::chooseCut(const MomentTable& table, const Rect& cells) const {
+std::optional<Cut> MedianCutRule::chooseCut(const RegionSweep& region) const {
   // Debevec 2005: cut across the longer side, measured on the sphere. If every lit cell lies in one column
   // (row), only the other axis can be cut.
-  auto extent = projection_.extentOnSphere(table.toPixels(cells));
+  const Rect& cells = region.cells();
+  auto extent = projection_.extentOnSphere(region.pixels());
   Axis axis = extent[0] >= extent[1] ? Axis::X : Axis::Y;
-  auto range = litCutRange(table, cells, axis);
+  auto range = litCutRange(region, axis);
   if (!range) {
     axis = axis == Axis::X ? Axis::Y : Axis::X;
-    range = litCutRange(table, cells, axis);
+    range = litCutRange(region, axis);
     if (!range) return std::nullopt;
   }
   // The energy left of a cut grows with its position: binary search the first position holding half, then
   // keep whichever of it and its predecessor is closer to half.
-  const double half = 0.5 * table.moments(cells).energy;
-  auto energyBefore = [&](int p) { return table.moments(splitRect(cells, axis, p)[0]).energy; };
+  const double half = 0.5 * region.total().energy;
+  auto energyBefore = [&](int p) { return region.before(axis, p).energy; };
   const auto [lo, hi] = *range;
   int p = firstTrue(lo, hi, [&](int q) { return energyBefore(q) >= half; });
   if (p > hi) p = hi;

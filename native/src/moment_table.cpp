@@ -125,7 +125,7 @@ struct TableRowLoop {
     if (x < a.width) group<0>(x, a.width - x);
     t = {{hsum(sumR), hsum(sumG), hsum(sumB)},
          hsum(sumE),
-         -(L::get(lit, 0) + L::get(lit, 1) + L::get(lit, 2) + L::get(lit, 3)),
+         L::get(lit, 0) + L::get(lit, 1) + L::get(lit, 2) + L::get(lit, 3),
          (L::get(odd, 0) | L::get(odd, 1) | L::get(odd, 2) | L::get(odd, 3)) != 0};
   }
 };
@@ -138,6 +138,98 @@ template <class V, bool Grey, bool Above>
 [[gnu::always_inline]] inline void tableRow(const TableRow& a, RowTotals& t) {
   TableRowLoop<V, Grey, Above> loop(a);
   loop(t);
+}
+
+// One row of a region for its column and row sums (MomentTable::marginals): four pixels at a time, one per
+// lane, with the table's products; each column's sums (five arrays, padded to whole groups of four) gain the
+// row's values, the row's sums are four partial sums per channel added at the end.
+struct MarginalRow {
+  const float* pixels;  // the region's first pixel in the row
+  std::ptrdiff_t step;
+  int width;
+  const double *cosPhi, *sinPhi;  // from the region's first column
+  double dw, dwCos, dwSin;
+  double* columns[5];  // per channel, width rounded up to four
+};
+
+// Samples p[0], p[step], ... of n <= 4 pixels (0 past them); NaN, Inf and beyond FLT_MAX read as 0.
+template <class V>
+[[gnu::always_inline]] inline void finiteSamples(const float* p, std::ptrdiff_t step, int n, const V& lo,
+                                                 const V& hi, V& out) {
+  using L = Lanes<V>;
+  V raw;
+  if (n == 4)
+    L::load(p[0], p[step], p[2 * step], p[3 * step], raw);
+  else
+    L::load(p[0], n > 1 ? p[step] : 0.0f, n > 2 ? p[2 * step] : 0.0f, 0.0f, raw);
+  L::keep(raw, (raw >= lo) & (raw <= hi), out);
+}
+
+template <class V, bool Grey>
+[[gnu::always_inline]] inline void marginalRow(const MarginalRow& a, MomentTable::Sums& row) {
+  using L = Lanes<V>;
+  using M = typename L::Mask;
+  V zero, one, lo, hi, wR, wG, wB, dw, dwCos, dwSin;
+  L::splat(0, zero), L::splat(1, one), L::splat(-kMax, lo), L::splat(kMax, hi);
+  L::splat(0.2126, wR), L::splat(0.7152, wG), L::splat(0.0722, wB);
+  L::splat(a.dw, dw), L::splat(a.dwCos, dwCos), L::splat(a.dwSin, dwSin);
+  V sums[5] = {zero, zero, zero, zero, zero};
+  const float* const pixels = a.pixels;
+  const std::ptrdiff_t step = a.step;
+  double* __restrict const c0 = a.columns[0];
+  double* __restrict const c1 = a.columns[1];
+  double* __restrict const c2 = a.columns[2];
+  double* __restrict const c3 = a.columns[3];
+  double* __restrict const c4 = a.columns[4];
+  for (int x = 0; x < a.width; x += 4) {
+    const int n = std::min(4, a.width - x);
+    const float* p = pixels + static_cast<std::ptrdiff_t>(x) * step;
+    V Rs, Gs, Bs, cosPhi, sinPhi;
+    finiteSamples(p, step, n, lo, hi, Rs);
+    if constexpr (Grey) {
+      Gs = Rs, Bs = Rs;
+    } else {
+      finiteSamples(p + 1, step, n, lo, hi, Gs), finiteSamples(p + 2, step, n, lo, hi, Bs);
+    }
+    if (n == 4) {
+      L::loadu(a.cosPhi + x, cosPhi), L::loadu(a.sinPhi + x, sinPhi);
+    } else {
+      cosPhi = sinPhi = zero;
+      for (int k = 0; k < n; ++k) L::set(cosPhi, k, a.cosPhi[x + k]), L::set(sinPhi, k, a.sinPhi[x + k]);
+    }
+    V R, G, B, lit1;
+    L::keep(Rs, Rs > zero, R), L::keep(Gs, Gs > zero, G), L::keep(Bs, Bs > zero, B);
+    const V Y = wR * R + wG * G + wB * B;
+    const M isLit = Y > zero;
+    L::keep(one, isLit, lit1);
+    const V values[5] = {Y * dw, (Y * cosPhi) * dwCos, (Y * sinPhi) * dwCos, Y * dwSin, lit1};
+    double* const columns[5] = {c0, c1, c2, c3, c4};
+    for (int k = 0; k < 5; ++k) {
+      V column;
+      L::loadu(columns[k] + x, column);
+      L::storeu(columns[k] + x, column + values[k]);
+      sums[k] = sums[k] + values[k];
+    }
+  }
+  for (int k = 0; k < 5; ++k) row[k] = hsum(sums[k]);
+}
+
+void marginalRowPortable(const MarginalRow& a, bool grey, MomentTable::Sums& row) {
+  grey ? marginalRow<Pairs, true>(a, row) : marginalRow<Pairs, false>(a, row);
+}
+
+#if defined(__x86_64__)
+__attribute__((target("avx2"))) void marginalRowAvx2(const MarginalRow& a, bool grey,
+                                                     MomentTable::Sums& row) {
+  grey ? marginalRow<D4, true>(a, row) : marginalRow<D4, false>(a, row);
+}
+#endif
+
+void sumMarginalRow(const MarginalRow& a, bool grey, MomentTable::Sums& row) {
+#if defined(__x86_64__)
+  if (hasAvx2()) return marginalRowAvx2(a, grey, row);
+#endif
+  marginalRowPortable(a, grey, row);
 }
 
 template <class V>
@@ -203,9 +295,16 @@ std::string WorkingResolution::toString() const {
   return "?";
 }
 
-MomentTable::MomentTable(const Probe& probe, int cellSize, CentroidWeight centroid, PixelReport* counts)
-    : MomentTable(probe.width(), probe.height(), cellSize, centroid) {
+MomentTable::MomentTable(const Probe& probe, int cellSize, CentroidWeight centroid, PixelReport* counts,
+                         Storage storage)
+    : cellSize_(cellSize), pixelWidth_(probe.width()), pixelHeight_(probe.height()) {
   probe.requirePixels("building the working grid");
+  if (cellSize == 1 && probe.projection().kind() == ProjectionKind::LatLong &&
+      (storage == Storage::Pixels || (storage == Storage::Auto && probe.width() > kTablesUpToWidth))) {
+    buildWithoutTables(probe, counts);
+    return;
+  }
+  allocate(centroid);
   if (counts) rowCounts_.assign(height(), PixelReport{});
   addBand(probe, 0, probe.height());
   finish();
@@ -218,12 +317,17 @@ MomentTable::MomentTable(const Probe& probe, int cellSize, CentroidWeight centro
 
 MomentTable::MomentTable(int pixelWidth, int pixelHeight, int cellSize, CentroidWeight centroid)
     : cellSize_(cellSize), pixelWidth_(pixelWidth), pixelHeight_(pixelHeight) {
-  if (cellSize < 1) throw Error("working-grid cell size must be at least 1 pixel");
-  const int cellsX = (pixelWidth + cellSize - 1) / cellSize, cellsY = (pixelHeight + cellSize - 1) / cellSize;
+  allocate(centroid);
+}
+
+void MomentTable::allocate(CentroidWeight centroid) {
+  if (cellSize_ < 1) throw Error("working-grid cell size must be at least 1 pixel");
+  const int cellsX = (pixelWidth_ + cellSize_ - 1) / cellSize_,
+            cellsY = (pixelHeight_ + cellSize_ - 1) / cellSize_;
   // A coarse grid keeps every cell's sums, so lights are summed from cells without reading the image again;
   // at full resolution that would be 32 (or 64) bytes a pixel, and lights re-read their regions' pixels
   // instead.
-  if (cellSize > 1) {
+  if (cellSize_ > 1) {
     const auto n = static_cast<std::size_t>(cellsX) * cellsY;
     cells_ = keptArray<CellLight>(n);
     if (centroid == CentroidWeight::Energy2) second_ = keptArray<CellSecond>(n);
@@ -231,6 +335,82 @@ MomentTable::MomentTable(int pixelWidth, int pixelHeight, int cellSize, Centroid
   sat_ = SummedAreaTable<5>(cellsX, cellsY);
   rowTotals_.assign(cellsY, PixelSums{});
   rowLitCells_.assign(cellsY, 0);
+}
+
+void MomentTable::buildWithoutTables(const Probe& probe, PixelReport* counts) {
+  // One pass for the probe's totals (and the pixels' check), four rows at a time; the regions' sums come
+  // later, from the pixels, when the cuts sweep them.
+  pixels_.emplace(Probe::unchecked(probe.view(), ProjectionKind::LatLong));
+  const int groups = (pixelHeight_ + 3) / 4;
+  std::vector<PixelSums> sums(groups);
+  std::vector<char> odd(groups, 0);
+  parallelFor(groups, [&](std::int64_t g) {
+    const int y0 = static_cast<int>(g) * 4, y1 = std::min(pixelHeight_, y0 + 4);
+    bool o = true;
+    accumulateRows(*pixels_, y0, y1, 0, pixelWidth_, pixelWidth_, std::span<PixelSums>(&sums[g], 1), false,
+                   &o);
+    odd[g] = o;
+  });
+  PixelSums total;
+  if (counts) *counts = PixelReport{};
+  for (int g = 0; g < groups; ++g) {
+    total += sums[g];
+    if (!counts) continue;
+    const int y0 = g * 4, y1 = std::min(pixelHeight_, y0 + 4);
+    if (odd[g]) {
+      counts->add(probe.countRows(y0, y1));
+    } else {
+      PixelReport r;
+      r.positiveLight = sums[g].energy;
+      counts->add(r);
+    }
+  }
+  integral_ = total.rgb;
+  totalEnergy_ = total.energy;
+  litCells_ = total.litPixels;
+  whole_ = {total.energy, total.moment, total.litPixels};
+}
+
+void MomentTable::marginals(const Rect& cells, std::vector<Sums>& columns, std::vector<Sums>& rows) const {
+  if (hasTables()) throw Error("MomentTable::marginals: the table has summed-area tables (use moments)");
+  const Probe& probe = *pixels_;
+  const ImageView& view = probe.view();
+  const int width = cells.width(), height = cells.height(), padded = (width + 3) / 4 * 4;
+  const auto first = probe.projection().latLongRow(cells.y0);
+  rows.assign(height, Sums{});
+  // Rows in blocks of a fixed height (not of the thread count): each block sums its columns on its own, the
+  // blocks are then added in order, so the sums are the same bits however many threads ran.
+  constexpr int kBlockRows = 256;
+  const int blocks = (height + kBlockRows - 1) / kBlockRows;
+  std::vector<std::vector<double>> blockColumns(blocks);
+  parallelFor(blocks, [&](std::int64_t b) {
+    std::vector<double>& c = blockColumns[b];
+    c.assign(5 * static_cast<std::size_t>(padded), 0.0);
+    const int y0 = cells.y0 + static_cast<int>(b) * kBlockRows, y1 = std::min(cells.y1, y0 + kBlockRows);
+    for (int y = y0; y < y1; ++y) {
+      const auto row = probe.projection().latLongRow(y);
+      const double dw = row.solidAngle;
+      MarginalRow a{view.pixel(cells.x0, y), view.pixelStep(),        width,
+                    first.cosPhi + cells.x0, first.sinPhi + cells.x0, dw,
+                    dw * row.cosEl,          dw * row.sinEl,          {}};
+      for (int k = 0; k < 5; ++k) a.columns[k] = c.data() + static_cast<std::size_t>(k) * padded;
+      sumMarginalRow(a, view.channels < 3, rows[y - cells.y0]);
+    }
+  });
+  columns.assign(width, Sums{});
+  for (const std::vector<double>& c : blockColumns)
+    for (int x = 0; x < width; ++x)
+      for (int k = 0; k < 5; ++k) columns[x][k] += c[static_cast<std::size_t>(k) * padded + x];
+}
+
+RegionMoments MomentTable::summedMoments(const Rect& cells) const {
+  if (cells.x0 == 0 && cells.y0 == 0 && cells.x1 == width() && cells.y1 == height()) return whole_;
+  std::vector<Sums> columns, rows;
+  marginals(cells, columns, rows);
+  Sums s{};
+  for (const Sums& c : columns)
+    for (int k = 0; k < 5; ++k) s[k] += c[k];
+  return {s[0], {s[1], s[2], s[3]}, std::llround(s[4])};
 }
 
 void MomentTable::addBand(const Probe& band, int y0, int y1) {

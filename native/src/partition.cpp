@@ -4,6 +4,7 @@
 #include <queue>
 #include <tuple>
 
+#include "parallel.h"
 #include "probelights/error.h"
 #include "probelights/lights.h"
 
@@ -14,10 +15,52 @@ std::array<Rect, 2> splitRect(const Rect& r, Axis axis, int position) {
   return {Rect{r.x0, r.y0, r.x1, position}, Rect{r.x0, position, r.x1, r.y1}};
 }
 
-std::optional<std::array<int, 2>> litCutRange(const MomentTable& table, const Rect& cells, Axis axis) {
+RegionSweep::RegionSweep(const MomentTable& table, const Rect& cells, const RegionMoments& total)
+    : table_(table), cells_(cells), pixels_(table.toPixels(cells)), total_(total) {
+  if (table.hasTables()) return;  // answered from the tables when asked
+  // From the region's column and row sums: the parts' moments summed in order from either end (lit counts
+  // are whole numbers, exact in a double).
+  std::vector<MomentTable::Sums> columns, rows;
+  table.marginals(cells, columns, rows);
+  auto sweepAxis = [](const std::vector<MomentTable::Sums>& sums, std::vector<RegionMoments>& before,
+                      std::vector<RegionMoments>& after) {
+    const std::size_t n = sums.size();
+    auto moments = [](const MomentTable::Sums& s) {
+      return RegionMoments{s[0], {s[1], s[2], s[3]}, std::llround(s[4])};
+    };
+    before.resize(n + 1), after.resize(n + 1);
+    MomentTable::Sums run{};
+    for (std::size_t i = 0; i <= n; ++i) {
+      before[i] = moments(run);
+      if (i < n)
+        for (int k = 0; k < 5; ++k) run[k] += sums[i][k];
+    }
+    run = {};
+    for (std::size_t i = n + 1; i-- > 0;) {
+      after[i] = moments(run);
+      if (i > 0)
+        for (int k = 0; k < 5; ++k) run[k] += sums[i - 1][k];
+    }
+  };
+  sweepAxis(columns, before_[0], after_[0]);
+  sweepAxis(rows, before_[1], after_[1]);
+}
+
+RegionMoments RegionSweep::before(Axis axis, int p) const {
+  if (table_.hasTables()) return table_.moments(splitRect(cells_, axis, p)[0]);
+  return axis == Axis::X ? before_[0][p - cells_.x0] : before_[1][p - cells_.y0];
+}
+
+RegionMoments RegionSweep::after(Axis axis, int p) const {
+  if (table_.hasTables()) return table_.moments(splitRect(cells_, axis, p)[1]);
+  return axis == Axis::X ? after_[0][p - cells_.x0] : after_[1][p - cells_.y0];
+}
+
+std::optional<std::array<int, 2>> litCutRange(const RegionSweep& region, Axis axis) {
+  const Rect& cells = region.cells();
   const int start = axis == Axis::X ? cells.x0 : cells.y0, end = axis == Axis::X ? cells.x1 : cells.y1;
-  const long long total = table.moments(cells).litCells;
-  auto litBefore = [&](int p) { return table.moments(splitRect(cells, axis, p)[0]).litCells; };
+  const long long total = region.total().litCells;
+  auto litBefore = [&](int p) { return region.before(axis, p).litCells; };
   // Valid p: the first part [start, p) has a lit cell and the second [p, end) has one, i.e. 1 <= litBefore(p)
   // < total.
   int first = firstTrue(start + 1, end - 1, [&](int p) { return litBefore(p) >= 1; });
@@ -30,6 +73,8 @@ Partition partitionSphere(const MomentTable& table, const CutRule& rule, int cou
   checkLightCount(count);
   Partition p;
   p.regions.push_back(table.wholeGrid());
+  // Each region's moments, beside it: from the sweep that cut it out of its parent.
+  std::vector<RegionMoments> moments{table.moments(table.wholeGrid())};
   if (table.litCells() == 0) {
     p.notes.push_back("the probe is black: no lights");
     return p;
@@ -38,34 +83,54 @@ Partition partitionSphere(const MomentTable& table, const CutRule& rule, int cou
   // Splits region i in place (first part) and appends the second; false if the rule cannot cut it. A region
   // is cut only where both parts keep a lit cell (CutRule contract), so every split adds exactly one lit
   // region.
+  struct Split {
+    Cut cut;
+    RegionMoments first, second;
+  };
+  // Where region i would be cut (it is not changed), or nothing.
+  auto chooseSplit = [&](std::size_t i) -> std::optional<Split> {
+    if (moments[i].litCells < 2) return std::nullopt;
+    const RegionSweep sweep(table, p.regions[i], moments[i]);
+    auto cut = rule.chooseCut(sweep);
+    if (!cut) return std::nullopt;
+    return Split{*cut, sweep.before(cut->axis, cut->position), sweep.after(cut->axis, cut->position)};
+  };
+  auto apply = [&](std::size_t i, const Split& s) {
+    auto parts = splitRect(p.regions[i], s.cut.axis, s.cut.position);
+    p.cuts.push_back(s.cut);
+    p.regions[i] = parts[0], moments[i] = s.first;
+    p.regions.push_back(parts[1]), moments.push_back(s.second);
+  };
   auto split = [&](std::size_t i) {
-    const Rect r = p.regions[i];
-    if (table.moments(r).litCells < 2) return false;
-    auto cut = rule.chooseCut(table, r);
-    if (!cut) return false;
-    auto parts = splitRect(r, cut->axis, cut->position);
-    p.cuts.push_back(*cut);
-    p.regions[i] = parts[0];
-    p.regions.push_back(parts[1]);
-    return true;
+    const auto s = chooseSplit(i);
+    if (s) apply(i, *s);
+    return s.has_value();
   };
 
   // A horizon cut first, where it leaves light on both sides; then only splits by priority.
   bool horizon = false;
   if (count >= 2 && horizonRow > 0 && horizonRow < table.height()) {
     auto parts = splitRect(p.regions[0], Axis::Y, horizonRow);
-    if (table.moments(parts[0]).litCells > 0 && table.moments(parts[1]).litCells > 0) {
+    const RegionSweep whole(table, p.regions[0], moments[0]);
+    const RegionMoments above = whole.before(Axis::Y, horizonRow), below = whole.after(Axis::Y, horizonRow);
+    if (above.litCells > 0 && below.litCells > 0) {
       p.cuts.push_back(Cut{p.regions[0], Axis::Y, horizonRow});
       p.regions = {parts[0], parts[1]};
+      moments = {above, below};
       horizon = p.horizonCut = true;
     }
   }
 
   // N = 2^n: n rounds that split every region (the papers' algorithm exactly, when nothing stops a split).
   if (!horizon && std::has_single_bit(static_cast<unsigned>(count))) {
+    // A round's regions are cut independently, so they are chosen side by side on the threads and applied in
+    // order: the same partition as one after the other.
     for (int round = 0; round < std::countr_zero(static_cast<unsigned>(count)); ++round) {
-      std::size_t n = p.regions.size();
-      for (std::size_t i = 0; i < n; ++i) split(i);
+      const std::size_t n = p.regions.size();
+      std::vector<std::optional<Split>> splits(n);
+      parallelFor(static_cast<std::int64_t>(n), [&](std::int64_t i) { splits[i] = chooseSplit(i); });
+      for (std::size_t i = 0; i < n; ++i)
+        if (splits[i]) apply(i, *splits[i]);
     }
   }
 
@@ -74,8 +139,7 @@ Partition partitionSphere(const MomentTable& table, const CutRule& rule, int cou
   std::priority_queue<Entry> queue;
   long long order = 0;
   auto push = [&](std::size_t i) {
-    if (table.moments(p.regions[i]).litCells >= 2)
-      queue.emplace(rule.priority(table, p.regions[i]), -order++, i);
+    if (moments[i].litCells >= 2) queue.emplace(rule.priority(moments[i]), -order++, i);
   };
   for (std::size_t i = 0; i < p.regions.size(); ++i) push(i);
   while (static_cast<int>(p.regions.size()) < count && !queue.empty()) {

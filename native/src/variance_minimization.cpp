@@ -5,24 +5,23 @@
 
 namespace probelights {
 
-std::optional<Cut> VarianceMinimizationRule::chooseCut(const MomentTable& table, const Rect& cells) const {
+std::optional<Cut> VarianceMinimizationRule::chooseCut(const RegionSweep& region) const {
   // Viriyothai & Debevec 2009: try every cut on both axes; keep the one whose worse part has the least
   // variance. Ties (e.g. two parts with no spread at all) go to the cut that balances energy best, then to
   // the first found.
   std::optional<Cut> best;
   double bestCost = std::numeric_limits<double>::infinity(), bestImbalance = bestCost;
   for (Axis axis : {Axis::X, Axis::Y}) {
-    auto range = litCutRange(table, cells, axis);
+    auto range = litCutRange(region, axis);
     if (!range) continue;
     for (int p = (*range)[0]; p <= (*range)[1]; ++p) {
-      auto parts = splitRect(cells, axis, p);
-      RegionMoments a = table.moments(parts[0]), b = table.moments(parts[1]);
+      RegionMoments a = region.before(axis, p), b = region.after(axis, p);
       double cost = std::max(a.variance(), b.variance());
       double imbalance = std::abs(a.energy - b.energy);
       if (cost < bestCost || (cost == bestCost && imbalance < bestImbalance)) {
         bestCost = cost;
         bestImbalance = imbalance;
-        best = Cut{cells, axis, p};
+        best = Cut{region.cells(), axis, p};
       }
     }
   }

@@ -101,7 +101,9 @@ TEST(MomentTable, FullResolutionLatLongTableEqualsItsPixelsSummedOneByOne) {
         }
       }
       double total = 0;
-      for (double v : w) total += v;
+      long long litPixels = 0;
+      for (double v : w) total += v, litPixels += v > 0;
+      EXPECT_EQ(table.litCells(), litPixels) << what;
       for (int k = 0; k < 3; ++k) EXPECT_NEAR(table.integral()[k], integral[k], 1e-12 * 4 * kPi) << what;
       EXPECT_NEAR(table.totalEnergy(), total, 1e-12 * total) << what;
       for (const Rect& r : {Rect{0, 0, W, H}, Rect{1, 2, W - 1, H - 3}, Rect{W - 3, 0, W, H},
@@ -155,6 +157,58 @@ TEST(MomentTable, FullResolutionLatLongTableIsTheSameBitsOnEveryPath) {
         }
       }
   }
+}
+
+TEST(MomentTable, WithoutSummedAreaTablesTheSameSumsFromThePixels) {
+  // A region's moments, its column and row sums, the totals and the pixels' check, from the pixels (the
+  // storage of a full-resolution table wider than 4096) against the summed-area tables; the same bits
+  // whatever the processor's path.
+  for (int W : {37, 40})
+    for (int channels : {1, 4}) {
+      const int H = W / 2;
+      const Buffer b = randomProbe(W, H, channels, 9u + W + channels);
+      const Probe probe = Probe::unchecked(b.view, ProjectionKind::LatLong);
+      PixelReport withTables, withPixels;
+      const MomentTable tables(probe, 1, CentroidWeight::Energy, &withTables);
+      const MomentTable pixels(probe, 1, CentroidWeight::Energy, &withPixels, MomentTable::Storage::Pixels);
+      ASSERT_FALSE(pixels.hasTables());
+      const std::string what = std::to_string(W) + " wide, " + std::to_string(channels) + " channels";
+      const double total = tables.totalEnergy();
+      EXPECT_NEAR(pixels.totalEnergy(), total, 1e-12 * total) << what;
+      EXPECT_EQ(pixels.litCells(), tables.litCells()) << what;
+      for (int k = 0; k < 3; ++k) EXPECT_NEAR(pixels.integral()[k], tables.integral()[k], 1e-12 * 4 * kPi);
+      EXPECT_EQ(withPixels.negativeSamples, withTables.negativeSamples) << what;
+      EXPECT_EQ(withPixels.nonFiniteSamples, 2) << what;
+      EXPECT_NEAR(withPixels.positiveLight, withTables.positiveLight, 1e-12 * total) << what;
+      auto near = [&](const RegionMoments& a, const RegionMoments& b, const std::string& where) {
+        EXPECT_NEAR(a.energy, b.energy, 1e-12 * total) << where;
+        EXPECT_NEAR(a.moment.x, b.moment.x, 1e-12 * total) << where;
+        EXPECT_NEAR(a.moment.y, b.moment.y, 1e-12 * total) << where;
+        EXPECT_NEAR(a.moment.z, b.moment.z, 1e-12 * total) << where;
+        EXPECT_EQ(a.litCells, b.litCells) << where;
+      };
+      for (const Rect& r :
+           {Rect{0, 0, W, H}, Rect{1, 2, W - 1, H - 3}, Rect{W - 3, 0, W, H}, Rect{4, 5, 5, 6}}) {
+        const std::string where = what + ", rect from " + std::to_string(r.x0) + "," + std::to_string(r.y0);
+        near(pixels.moments(r), tables.moments(r), where);
+        std::vector<MomentTable::Sums> columns, rows, columnsPortable, rowsPortable;
+        pixels.marginals(r, columns, rows);
+        lanes::portableOnly() = true;
+        pixels.marginals(r, columnsPortable, rowsPortable);
+        lanes::portableOnly() = false;
+        EXPECT_EQ(columns, columnsPortable) << where;
+        EXPECT_EQ(rows, rowsPortable) << where;
+        ASSERT_EQ(columns.size(), static_cast<std::size_t>(r.width()));
+        ASSERT_EQ(rows.size(), static_cast<std::size_t>(r.height()));
+        auto moments = [](const MomentTable::Sums& s) {
+          return RegionMoments{s[0], {s[1], s[2], s[3]}, std::llround(s[4])};
+        };
+        for (int x = r.x0; x < r.x1; ++x)
+          near(moments(columns[x - r.x0]), tables.moments({x, r.y0, x + 1, r.y1}), where + " column");
+        for (int y = r.y0; y < r.y1; ++y)
+          near(moments(rows[y - r.y0]), tables.moments({r.x0, y, r.x1, y + 1}), where + " row");
+      }
+    }
 }
 
 // An 8192x4096 probe holding a 1-pixel sun of 1e7 next to a sky of 1e-2: region sums from the tables must

@@ -330,6 +330,41 @@ TEST(Probe, FilesFormatsOpenImageIOReadsGiveTheSameLights) {
   fs::remove_all(dir);
 }
 
+TEST(Probe, RealProbesWithoutSummedAreaTablesTheSameLights) {
+  // A full-resolution table of a probe wider than 4096 keeps no summed-area tables: the cuts sweep each
+  // region's column and row sums from its pixels (moment_table.h). On every real probe, both cut rules, a
+  // power of two (rounds), other counts (by priority) and the horizon cut: the same regions and the same
+  // lights as with the tables (their sums differ only in rounding).
+  for (const fs::path& file : realProbes()) {
+    const Probe probe = Probe::load(file.string());
+    if (probe.projection().kind() != ProjectionKind::LatLong) continue;
+    const MomentTable tables(probe, 1, CentroidWeight::Energy, nullptr, MomentTable::Storage::Tables);
+    PixelReport counts;
+    const MomentTable pixels(probe, 1, CentroidWeight::Energy, &counts, MomentTable::Storage::Pixels);
+    ASSERT_TRUE(tables.hasTables());
+    ASSERT_FALSE(pixels.hasTables());
+    const std::string name = file.filename().string();
+    EXPECT_EQ(pixels.litCells(), tables.litCells()) << name;
+    EXPECT_LE(maxRelativeDifference(pixels.integral(), tables.integral()), 1e-12) << name;
+    EXPECT_EQ(counts.negativeSamples, probe.report().negativeSamples) << name;
+    for (Method method : {Method::MedianCut, Method::Variance})
+      for (int n : {16, 64, 100})
+        for (bool horizon : {false, true}) {
+          BakeOptions o;
+          o.method = method, o.lights = n, o.splitAtHorizon = horizon;
+          o.resolution = WorkingResolution{WorkingResolution::Mode::Full, 0};
+          const BakeResult a = bake(probe, tables, o), b = bake(probe, pixels, o);
+          const std::string what =
+              name + " " + toString(method) + " " + std::to_string(n) + (horizon ? " horizon" : "");
+          ASSERT_EQ(a.lights.size(), b.lights.size()) << what;
+          for (std::size_t i = 0; i < a.lights.size(); ++i) {
+            EXPECT_EQ(a.lights[i].rect, b.lights[i].rect) << what << " light " << i;
+            EXPECT_EQ(a.lights[i].rgb, b.lights[i].rgb) << what << " light " << i;
+          }
+        }
+  }
+}
+
 TEST(Probe, FilesAutoProjectionPicksLatLongFor2To1AndAsksOtherwise) {
   const int S = 32;
   std::vector<float> px(S * S * 3, 1.0f);

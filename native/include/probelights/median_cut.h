@@ -11,11 +11,9 @@ class MedianCutRule final : public CutRule {
  public:
   explicit MedianCutRule(const Projection& projection) : projection_(projection) {}
   std::string name() const override { return "median-cut"; }
-  std::optional<Cut> chooseCut(const MomentTable& table, const Rect& cells) const override;
+  std::optional<Cut> chooseCut(const RegionSweep& region) const override;
   // The brightest region is split first: median cut aims at equal energy per light.
-  double priority(const MomentTable& table, const Rect& cells) const override {
-    return table.moments(cells).energy;
-  }
+  double priority(const RegionMoments& region) const override { return region.energy; }
 
  private:
   const Projection& projection_;

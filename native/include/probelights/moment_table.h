@@ -11,8 +11,10 @@
 // Lights are always summed from the full-resolution pixels of their regions (lights.h).
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -53,12 +55,17 @@ struct WorkingResolution {
 
 class MomentTable {
  public:
+  // Whether a full-resolution lat-long table keeps summed-area tables: Auto = up to kTablesUpToWidth pixels
+  // wide (see hasTables); Tables or Pixels to choose (the tests compare both).
+  enum class Storage { Auto, Tables, Pixels };
+
   // `centroid`: the lights' centroid weighting the cells' sums serve (CentroidWeight::Energy2 also keeps each
   // cell's Y^2-weighted sums: 32 more bytes a cell).
   // `counts`: the pixels' check (Probe::countRows) done in the same pass, row by row just before the rows are
   // summed (Probe::unchecked: one read of the image instead of two), written there.
+  // `storage`: Pixels only for cell size 1 and a lat-long probe (else it has tables whatever is asked).
   MomentTable(const Probe& probe, int cellSize, CentroidWeight centroid = CentroidWeight::Energy,
-              PixelReport* counts = nullptr);
+              PixelReport* counts = nullptr, Storage storage = Storage::Auto);
 
   // The same table built band by band (grid_load.h reads a probe this way, never holding it whole): a table
   // for a pixelWidth x pixelHeight probe; addBand() with every band of pixel rows [y0, y1) once (y0 and y1 on
@@ -70,14 +77,28 @@ class MomentTable {
   void finish();
 
   int cellSize() const { return cellSize_; }
-  int width() const { return sat_.width(); }    // in cells
-  int height() const { return sat_.height(); }  // in cells
+  int width() const { return (pixelWidth_ + cellSize_ - 1) / cellSize_; }    // in cells
+  int height() const { return (pixelHeight_ + cellSize_ - 1) / cellSize_; }  // in cells
   Rect wholeGrid() const { return {0, 0, width(), height()}; }
 
   RegionMoments moments(const Rect& cells) const {
+    if (!hasTables()) return summedMoments(cells);
     auto s = sat_.sum(cells);
     return {s[0], {s[1], s[2], s[3]}, std::llround(s[4])};
   }
+
+  // Whether the table keeps summed-area tables. A full-resolution table of a lat-long probe wider than
+  // kTablesUpToWidth keeps none (they would be 40 bytes a pixel: 1.3 GB at 8K, 5.4 GB at 16K): it keeps a
+  // view of the probe's pixels (which must outlive it) and sums a region's columns and rows from them when a
+  // cut rule sweeps it (RegionSweep, partition.h): a pass over the pixels per round of cuts instead of one
+  // to build the tables, the same regions. Up to 4K the tables (335 MB at 4K) are faster.
+  static constexpr int kTablesUpToWidth = 4096;
+  bool hasTables() const { return !pixels_; }
+  // w, w dx, w dy, w dz and lit pixels, summed.
+  using Sums = std::array<double, 5>;
+  // For a table without summed-area tables: the sums of each column and of each row of the pixel rectangle
+  // `cells` (cells are pixels there), in order.
+  void marginals(const Rect& cells, std::vector<Sums>& columns, std::vector<Sums>& rows) const;
   // The pixels a rectangle of cells covers (the last row and column of cells may be partial).
   Rect toPixels(const Rect& cells) const;
 
@@ -99,7 +120,13 @@ class MomentTable {
   // its sums met a negative, NaN or Inf sample (`odd`), else nothing to count and its light is `energy`.
   void checkRows(const Probe& band, int cellRow, bool odd, int y0, int y1, double energy);
 
+  void allocate(CentroidWeight centroid);
+  void buildWithoutTables(const Probe& probe, PixelReport* counts);
+  RegionMoments summedMoments(const Rect& cells) const;  // without tables: from the pixels
+
   int cellSize_, pixelWidth_, pixelHeight_;
+  std::optional<Probe> pixels_;  // without tables: a view of the probe's pixels (not a copy)
+  RegionMoments whole_;          // without tables: the whole probe's moments
   SummedAreaTable<5> sat_;
   Rgb integral_{};
   double totalEnergy_ = 0;

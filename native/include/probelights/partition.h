@@ -32,9 +32,30 @@ struct Cut {  // in cells of the working grid (BakeResult reports them in pixels
 // The two parts of region r on either side of a cut at `position` along `axis`.
 std::array<Rect, 2> splitRect(const Rect& r, Axis axis, int position);
 
-// The cut positions along `axis` that leave at least one lit cell on both sides of region `cells`: [first,
+// A region and what the cut rules read of it: its moments, and those of its two parts on either side of a
+// cut at any position along either axis. From the summed-area tables (each asked for in O(1) when read), or,
+// for a table without them (MomentTable::hasTables), from the region's column and row sums taken from its
+// pixels in one pass when the sweep is made.
+class RegionSweep {
+ public:
+  RegionSweep(const MomentTable& table, const Rect& cells, const RegionMoments& total);
+  const Rect& cells() const { return cells_; }
+  const Rect& pixels() const { return pixels_; }  // the pixels the cells cover
+  const RegionMoments& total() const { return total_; }
+  // The moments of splitRect(cells(), axis, p)[0] and [1], for a position p inside the region along axis.
+  RegionMoments before(Axis axis, int p) const;
+  RegionMoments after(Axis axis, int p) const;
+
+ private:
+  const MomentTable& table_;
+  Rect cells_, pixels_;
+  RegionMoments total_;
+  std::vector<RegionMoments> before_[2], after_[2];  // without tables: index p - start, per axis
+};
+
+// The cut positions along `axis` that leave at least one lit cell on both sides of the region: [first,
 // last], or nullopt if there is none. Both rules choose only among these.
-std::optional<std::array<int, 2>> litCutRange(const MomentTable& table, const Rect& cells, Axis axis);
+std::optional<std::array<int, 2>> litCutRange(const RegionSweep& region, Axis axis);
 
 // The smallest p in [lo, hi] with pred(p) true, for a pred that is false then true; hi + 1 if none.
 template <class Pred>
@@ -56,9 +77,10 @@ class CutRule {
   virtual std::string name() const = 0;
   // Where to cut a region that holds at least two lit cells, at a position within litCutRange; nullopt if
   // none.
-  virtual std::optional<Cut> chooseCut(const MomentTable& table, const Rect& cells) const = 0;
-  // Which region to split next when not every region is split in a round: the largest value first.
-  virtual double priority(const MomentTable& table, const Rect& cells) const = 0;
+  virtual std::optional<Cut> chooseCut(const RegionSweep& region) const = 0;
+  // Which region (of these moments) to split next when not every region is split in a round: the largest
+  // value first.
+  virtual double priority(const RegionMoments& region) const = 0;
 };
 
 struct Partition {

@@ -11,11 +11,9 @@ namespace probelights {
 class VarianceMinimizationRule final : public CutRule {
  public:
   std::string name() const override { return "variance"; }
-  std::optional<Cut> chooseCut(const MomentTable& table, const Rect& cells) const override;
+  std::optional<Cut> chooseCut(const RegionSweep& region) const override;
   // The most spread-out region is split first.
-  double priority(const MomentTable& table, const Rect& cells) const override {
-    return table.moments(cells).variance();
-  }
+  double priority(const RegionMoments& region) const override { return region.variance(); }
 };
 
 }  // namespace probelights
