@@ -17,6 +17,8 @@
 namespace probelights {
 namespace {
 
+using testing::randomProbe;
+
 TEST(MomentTable, VarianceIsTheSpreadAboutTheCentroidOnTheSphere) {
   auto t = testing::makeProbe(64, 32, ProjectionKind::LatLong, [](int x, int y) {
     return Rgb{0.1 + x % 7, 0.2 + y % 5, 1.0 + (x * y) % 3};
@@ -45,26 +47,6 @@ TEST(MomentTable, VarianceIsTheSpreadAboutTheCentroidOnTheSphere) {
   }
 }
 
-// RGBA pixels (or one grey channel), rows bottom first read through a flipped view (Blender's layout), some
-// samples negative, a NaN and an Inf.
-struct Buffer {
-  std::vector<float> data;
-  ImageView view;
-};
-
-Buffer randomProbe(int W, int H, int channels, std::uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u(-0.2f, 3.0f);
-  Buffer b;
-  b.data.resize(static_cast<std::size_t>(W) * H * channels);
-  for (float& f : b.data) f = u(rng);
-  b.data[5 * channels] = std::numeric_limits<float>::quiet_NaN();
-  b.data[(static_cast<std::size_t>(W) * 3 + 7) * channels] = std::numeric_limits<float>::infinity();
-  b.view = ImageView{b.data.data() + static_cast<std::size_t>(H - 1) * W * channels, W, H, channels};
-  b.view.rowStride = -static_cast<std::ptrdiff_t>(W) * channels;
-  return b;
-}
-
 // Every prefix rectangle [0, x) x [0, y): together they are the whole table.
 std::vector<RegionMoments> prefixes(const MomentTable& t) {
   std::vector<RegionMoments> out;
@@ -78,8 +60,8 @@ TEST(MomentTable, FullResolutionLatLongTableEqualsItsPixelsSummedOneByOne) {
   for (int W : {36, 37, 38, 39})
     for (int channels : {1, 4}) {
       const int H = W / 2;
-      const Buffer b = randomProbe(W, H, channels, 3u + W + channels);
-      const Probe probe = Probe::unchecked(b.view, ProjectionKind::LatLong);
+      const testing::TestProbe t = randomProbe(W, H, channels, 3u + W + channels);
+      const Probe& probe = t.probe;
       PixelReport counts;
       const MomentTable table(probe, 1, CentroidWeight::Energy, &counts);
       const std::string what = std::to_string(W) + " wide, " + std::to_string(channels) + " channels";
@@ -90,7 +72,7 @@ TEST(MomentTable, FullResolutionLatLongTableEqualsItsPixelsSummedOneByOne) {
       for (int y = 0; y < H; ++y) {
         const auto row = probe.projection().latLongRow(y);
         for (int x = 0; x < W; ++x) {
-          const float* p = b.view.pixel(x, y);
+          const float* p = probe.view().pixel(x, y);
           Rgb L;
           for (int k = 0; k < 3; ++k) L[k] = Probe::finite(p[channels < 3 ? 0 : k]);
           const double Y = luminance(std::max(0.0, L[0]), std::max(0.0, L[1]), std::max(0.0, L[2]));
@@ -133,8 +115,8 @@ TEST(MomentTable, FullResolutionLatLongTableIsTheSameBitsOnEveryPath) {
   // the row above as it comes) and in two passes on the threads.
   const int W = 39, H = 20;
   for (int channels : {1, 4}) {
-    const Buffer b = randomProbe(W, H, channels, 5u + channels);
-    const Probe probe = Probe::unchecked(b.view, ProjectionKind::LatLong);
+    const testing::TestProbe t = randomProbe(W, H, channels, 5u + channels);
+    const Probe& probe = t.probe;
     const std::vector<RegionMoments> reference = prefixes(MomentTable(probe, 1));
     const Rgb integral = MomentTable(probe, 1).integral();
     for (bool portable : {false, true})
@@ -166,8 +148,8 @@ TEST(MomentTable, WithoutSummedAreaTablesTheSameSumsFromThePixels) {
   for (int W : {37, 40})
     for (int channels : {1, 4}) {
       const int H = W / 2;
-      const Buffer b = randomProbe(W, H, channels, 9u + W + channels);
-      const Probe probe = Probe::unchecked(b.view, ProjectionKind::LatLong);
+      const testing::TestProbe t = randomProbe(W, H, channels, 9u + W + channels);
+      const Probe& probe = t.probe;
       PixelReport withTables, withPixels;
       const MomentTable tables(probe, 1, CentroidWeight::Energy, &withTables);
       const MomentTable pixels(probe, 1, CentroidWeight::Energy, &withPixels, MomentTable::Storage::Pixels);

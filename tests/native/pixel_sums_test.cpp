@@ -10,9 +10,12 @@
 #include <vector>
 
 #include "../../native/src/lanes.h"
+#include "test_probes.h"
 
 namespace probelights {
 namespace {
+
+using testing::randomProbe;
 
 // The sums of pixels [x0, x1) x [y0, y1) of a lat-long probe, one pixel at a time (PixelSums' definitions).
 PixelSums reference(const Probe& probe, int x0, int x1, int y0, int y1) {
@@ -55,31 +58,11 @@ void expectClose(const PixelSums& a, const PixelSums& b, const std::string& what
   EXPECT_EQ(a.litPixels, b.litPixels) << what;
 }
 
-// RGBA pixels, rows stored bottom first and read through a flipped view (Blender's layout), some samples
-// negative, one NaN and one Inf; or one grey channel.
-struct Buffer {
-  std::vector<float> data;
-  ImageView view;
-};
-
-Buffer randomProbe(int W, int H, int channels, std::uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u(-0.2f, 3.0f);
-  Buffer b;
-  b.data.resize(static_cast<std::size_t>(W) * H * channels);
-  for (float& f : b.data) f = u(rng);
-  b.data[5 * channels] = std::numeric_limits<float>::quiet_NaN();
-  b.data[(static_cast<std::size_t>(W) * 3 + 7) * channels] = std::numeric_limits<float>::infinity();
-  b.view = ImageView{b.data.data() + static_cast<std::size_t>(H - 1) * W * channels, W, H, channels};
-  b.view.rowStride = -static_cast<std::ptrdiff_t>(W) * channels;
-  return b;
-}
-
 TEST(PixelSums, LatLongCellsEqualTheirPixelsSummedOneByOne) {
   const int W = 37, H = 19;
   for (int channels : {1, 4}) {
-    const Buffer b = randomProbe(W, H, channels, 7u + channels);
-    const Probe probe = Probe::unchecked(b.view, ProjectionKind::LatLong);
+    const testing::TestProbe t = randomProbe(W, H, channels, 7u + channels);
+    const Probe& probe = t.probe;
     // Row counts that fill four lanes, leave some empty, or one; cells of 1 to 9 pixels, a ragged last cell.
     for (auto [y0, y1] : {std::pair{0, 19}, {3, 4}, {4, 10}, {5, 8}, {0, 2}})
       for (int cellSize : {1, 2, 3, 4, 9})
@@ -99,7 +82,7 @@ TEST(PixelSums, LatLongCellsEqualTheirPixelsSummedOneByOne) {
           for (int y = y0; y < y1; ++y)
             for (int x = x0; x < x1; ++x)
               for (int k = 0; k < std::min(channels, 3); ++k) {
-                const float f = b.view.pixel(x, y)[k];
+                const float f = probe.view().pixel(x, y)[k];
                 expected |= !(f >= 0.0f && f <= std::numeric_limits<float>::max());
               }
           EXPECT_EQ(odd, expected) << what;
@@ -112,8 +95,8 @@ TEST(PixelSums, PortableAndAvx2PathsGiveTheSameBits) {
   // tests say so (lanes::portableOnly); without AVX2 both calls are the portable build.
   const int W = 61, H = 23;
   for (int channels : {1, 4}) {
-    const Buffer b = randomProbe(W, H, channels, 11u + channels);
-    const Probe probe = Probe::unchecked(b.view, ProjectionKind::LatLong);
+    const testing::TestProbe t = randomProbe(W, H, channels, 11u + channels);
+    const Probe& probe = t.probe;
     for (auto [y0, y1] : {std::pair{0, 23}, {2, 5}, {7, 8}})
       for (int cellSize : {1, 3, 4, 16})
         for (bool squares : {false, true}) {

@@ -1,8 +1,11 @@
 // Synthetic probes for the tests: small float buffers the test owns, viewed by a Probe without copying.
 #pragma once
 
+#include <cstdint>
 #include <functional>
+#include <limits>
 #include <memory>
+#include <random>
 #include <vector>
 
 #include "probelights/bake.h"
@@ -28,6 +31,21 @@ inline TestProbe makeProbe(int width, int height, ProjectionKind kind,
     }
   Probe probe(ImageView{pixels->data(), width, height, 3}, kind);
   return {pixels, std::move(probe)};
+}
+
+// A lat-long probe of random RGBA pixels (or one grey channel) in [-0.2, 3), one NaN and one Inf, rows stored
+// bottom first and read through a flipped view (Blender's layout), unchecked (Probe::unchecked): the loops'
+// hard cases in a few pixels.
+inline TestProbe randomProbe(int W, int H, int channels, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(-0.2f, 3.0f);
+  auto data = std::make_shared<std::vector<float>>(static_cast<std::size_t>(W) * H * channels);
+  for (float& f : *data) f = u(rng);
+  (*data)[5 * channels] = std::numeric_limits<float>::quiet_NaN();
+  (*data)[(static_cast<std::size_t>(W) * 3 + 7) * channels] = std::numeric_limits<float>::infinity();
+  ImageView view{data->data() + static_cast<std::size_t>(H - 1) * W * channels, W, H, channels};
+  view.rowStride = -static_cast<std::ptrdiff_t>(W) * channels;
+  return {data, Probe::unchecked(view, ProjectionKind::LatLong)};
 }
 
 inline TestProbe uniformProbe(int width, int height, ProjectionKind kind, Rgb L) {
