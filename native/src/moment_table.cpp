@@ -1,3 +1,6 @@
+// The working grid's moments (moment_table.h): summed-area tables built from the pixels, cell row by cell row
+// for a coarse grid or four pixels at a time at full resolution; or, for a probe too wide for tables at full
+// resolution, no tables: the column and row sums of each region a cut rule sweeps, from its pixels.
 #include "probelights/moment_table.h"
 
 #include <algorithm>
