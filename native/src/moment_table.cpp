@@ -33,6 +33,23 @@ struct RowTotals {
   bool odd;  // a negative, NaN or Inf sample in the row (for the pixels' check)
 };
 
+// Samples p[0], p[step], ... of n <= 4 pixels (0 past them); NaN, Inf and beyond FLT_MAX read as 0
+// (Probe::finite). `odd`, when given, collects the lanes that read a negative, NaN or Inf sample.
+template <class V>
+[[gnu::always_inline]] inline void finiteSamples(const float* p, std::ptrdiff_t step, int n, const V& lo,
+                                                 const V& hi, V& out,
+                                                 typename Lanes<V>::Mask* odd = nullptr) {
+  using L = Lanes<V>;
+  V raw, zero;
+  if (n == 4)
+    L::load(p[0], p[step], p[2 * step], p[3 * step], raw);
+  else
+    L::load(p[0], n > 1 ? p[step] : 0.0f, n > 2 ? p[2 * step] : 0.0f, 0.0f, raw);
+  L::splat(0, zero);
+  if (odd) *odd = *odd | ~((raw >= zero) & (raw <= hi));
+  L::keep(raw, (raw >= lo) & (raw <= hi), out);
+}
+
 // Four pixels at a time, one per lane: their samples, luminance and four weighted moments (w, w dx, w dy,
 // w dz: the products accumulateRows makes for a cell of one pixel) as vectors, then turned (transpose) into
 // one vector per pixel, so the running sums along the row are one vector add per pixel, channel by channel
@@ -66,14 +83,7 @@ struct TableRowLoop {
   // `odd` collects negative, NaN or Inf.
   template <int N>
   [[gnu::always_inline]] void channel(int x, int n, int c, V& s) {
-    const float* p = pixels + static_cast<std::ptrdiff_t>(x) * step + c;
-    V raw;
-    if constexpr (N == 4)
-      L::load(p[0], p[step], p[2 * step], p[3 * step], raw);
-    else
-      L::load(p[0], n > 1 ? p[step] : 0.0f, n > 2 ? p[2 * step] : 0.0f, 0.0f, raw);
-    odd = odd | ~((raw >= zero) & (raw <= hi));
-    L::keep(raw, (raw >= lo) & (raw <= hi), s);
+    finiteSamples(pixels + static_cast<std::ptrdiff_t>(x) * step + c, step, N == 4 ? 4 : n, lo, hi, s, &odd);
   }
 
   [[gnu::always_inline]] void write(int x, const V& value, double lit1) {
@@ -154,19 +164,6 @@ struct MarginalRow {
   double dw, dwCos, dwSin;
   double* columns[5];  // per channel, width rounded up to four
 };
-
-// Samples p[0], p[step], ... of n <= 4 pixels (0 past them); NaN, Inf and beyond FLT_MAX read as 0.
-template <class V>
-[[gnu::always_inline]] inline void finiteSamples(const float* p, std::ptrdiff_t step, int n, const V& lo,
-                                                 const V& hi, V& out) {
-  using L = Lanes<V>;
-  V raw;
-  if (n == 4)
-    L::load(p[0], p[step], p[2 * step], p[3 * step], raw);
-  else
-    L::load(p[0], n > 1 ? p[step] : 0.0f, n > 2 ? p[2 * step] : 0.0f, 0.0f, raw);
-  L::keep(raw, (raw >= lo) & (raw <= hi), out);
-}
 
 template <class V, bool Grey>
 [[gnu::always_inline]] inline void marginalRow(const MarginalRow& a, MomentTable::Sums& row) {
