@@ -4,7 +4,9 @@
 # probe), then, each 6 times (medians):
 #   the reads alone   every file read whole, one after another, in one process (probelights_decode_bench's
 #                     BM_LibraryReads; the process start is not counted)
-#   the library       probelights bake DIR --out-dir OUT --lights 64, the whole process (start-up included)
+#   the library       probelights bake DIR --out-dir OUT --lights 64, the whole process (start-up included),
+#                     and inside it (summary.json's seconds: from the first load to the last result written)
+#   the process start probelights --help, the whole process (OpenImageIO's libraries loaded and bound)
 # Run on an idle machine:  bash scripts/bench_library.sh [build/bin]
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
@@ -26,20 +28,35 @@ runs = [b["real_time"] for b in json.load(sys.stdin)["benchmarks"] if b.get("run
 runs.sort()
 print(runs[len(runs) // 2])')
 
-times=()
+# Milliseconds a command takes as a whole process.
+whole_ms() {
+  local start end
+  start=$(date +%s.%N)
+  "$@" > /dev/null
+  end=$(date +%s.%N)
+  python3 -c "print(($end - $start) * 1000)"
+}
+times=() inside=() starts=()
 for run in 1 2 3 4 5 6; do
   rm -rf "$work/out"
-  start=$(date +%s.%N)
-  "$bin/probelights" bake "$work/lib" --out-dir "$work/out" --lights 64 > /dev/null
-  end=$(date +%s.%N)
-  times+=("$(python3 -c "print(($end - $start) * 1000)")")
+  times+=("$(whole_ms "$bin/probelights" bake "$work/lib" --out-dir "$work/out" --lights 64)")
+  inside+=("$(python3 -c 'import json, sys; print(1000 * json.load(open(sys.argv[1]))["seconds"])' \
+    "$work/out/summary.json")")
+  starts+=("$(whole_ms "$bin/probelights" --help)")
 done
-python3 - "$reads_ms" "${times[@]}" <<'EOF'
+python3 - "$reads_ms" "${times[*]}" "${inside[*]}" "${starts[*]}" <<'EOF'
 import sys
 reads = float(sys.argv[1])
-runs = sorted(float(t) for t in sys.argv[2:])
-median = (runs[2] + runs[3]) / 2
-print(f"reads alone  {reads:7.0f} ms (median of 6, one process, start not counted)")
-print(f"library      {median:7.0f} ms (median of 6, {runs[0]:.0f}-{runs[-1]:.0f}; the whole process)")
-print(f"ratio        {median / reads:7.2f}x (issue 10 asks at most 1.5x)")
+def median(text):
+    runs = sorted(float(t) for t in text.split())
+    return (runs[2] + runs[3]) / 2, runs[0], runs[-1]
+library, lo, hi = median(sys.argv[2])
+inside, ilo, ihi = median(sys.argv[3])
+start, slo, shi = median(sys.argv[4])
+print(f"reads alone    {reads:7.0f} ms (median of 6, one process, start not counted)")
+print(f"library        {library:7.0f} ms (median of 6, {lo:.0f}-{hi:.0f}; the whole process)")
+print(f"  inside it    {inside:7.0f} ms ({ilo:.0f}-{ihi:.0f}; first load to last result, summary.json)")
+print(f"process start  {start:7.0f} ms ({slo:.0f}-{shi:.0f}; probelights --help)")
+print(f"ratio          {library / reads:7.2f}x (issue 10 asks at most 1.5x); inside the process "
+      f"{inside / reads:.2f}x; the start alone {start / reads:.2f}x")
 EOF
