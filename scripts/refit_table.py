@@ -12,26 +12,17 @@ figures and the probes over issue 9's bar (16 suns within 2 %, 64 within 0.7 %) 
 import re
 import sys
 
-head = re.compile(r"ESTIMATE Blender (\S+).*?, (\S+), (\d+) spp: world noise ([\d.]+) %")
+from shadow_table import read_renders
+
 line = re.compile(r"ESTIMATE +(\d+) suns FIT +refit: estimate ([\d.]+) %, rendered ([\d.]+) % "
                   r"\(lamps' noise ([\d.]+) %; less both noises ([\d.]+) %\)")
 old_row = re.compile(r"^\| (\S+) \| (\S+), \d+ \| [\d.]+ % \| ([^|]+) \| ([^|]+) \|$")
 BARS = {16: 2.0, 64: 0.7}
 
 
-def read_renders(paths):
-    """One dict per (probe, Blender): its samples, world noise and, per sun count, (estimate, rendered, lamps'
-    noise, less both noises)."""
-    rows = []
-    for path in paths:
-        current = None
-        for text in open(path):
-            if m := head.match(text):
-                current = {"blender": m[1], "probe": m[2], "spp": m[3], "noise": m[4], "cells": {}}
-                rows.append(current)
-            elif (m := line.match(text)) and current:
-                current["cells"][int(m[1])] = tuple(float(m[k]) for k in (2, 3, 4, 5))
-    return rows
+def renders(paths):
+    """Per (probe, Blender): cells[suns] = (estimate, rendered, lamps' noise, less both noises)."""
+    return read_renders(paths, line, lambda m: (int(m[1]), tuple(float(m[k]) for k in (2, 3, 4, 5))))
 
 
 def report_bar(rows):
@@ -55,7 +46,7 @@ def before_and_now(readme, paths):
     for text in open(readme):
         if (m := old_row.match(text.strip())) and "->" not in text:
             before[(m[1], m[2])] = [float(cell.split("/")[-1]) for cell in (m[3], m[4])]
-    rows = read_renders(paths)
+    rows = renders(paths)
     print("| probe | Blender, spp | world noise | 16 refit suns: before -> **now** (estimate; lamps' noise; less "
           "both noises) | 64 refit suns: the same |")
     print("|---|---|---|---|---|")
@@ -74,7 +65,7 @@ def before_and_now(readme, paths):
 
 def bar_table(paths):
     """Rendered less both noises, the estimate in brackets; over the bar in bold."""
-    rows = read_renders(paths)
+    rows = renders(paths)
     blenders = list(dict.fromkeys(r["blender"] for r in rows))
     by_probe = {}
     for r in rows:

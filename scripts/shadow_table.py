@@ -13,47 +13,60 @@ CHOICES = ("HARD", "SPREAD", "FIT", "FIT refit")
 head = re.compile(r"ESTIMATE Blender (\S+).*?, (\S+), (\d+) spp: world noise ([\d.]+) %")
 line = re.compile(r"ESTIMATE +(\d+) suns (\w+) +(refit)?: estimate ([\d.]+) %, rendered ([\d.]+) %")
 
-rows = []
-for path in sys.argv[1:]:
-    current = None
-    for text in open(path):
-        if m := head.match(text):
-            current = {"blender": m[1], "probe": m[2], "spp": m[3], "noise": m[4], "cells": {}}
-            rows.append(current)
-        elif (m := line.match(text)) and current:
-            choice = m[2] + (" refit" if m[3] else "")
-            current["cells"][(int(m[1]), choice)] = (float(m[4]), float(m[5]))
 
-print("| probe | Blender, spp | world noise | 16: hard / spread / **fitted** (estimate) / fitted+refit "
-      "| 64: hard / spread / **fitted** (estimate) / fitted+refit |")
-print("|---|---|---|---|---|")
-worst = {}
-for r in sorted(rows, key=lambda r: (r["probe"].lower(), r["blender"])):
-    cells = []
-    for n in (16, 64):
-        parts = []
-        for choice in CHOICES:
-            if (n, choice) not in r["cells"]:
-                parts.append("-")
-                continue
-            est, ren = r["cells"][(n, choice)]
-            parts.append("**%.2f** (%.2f)" % (ren, est) if choice == "FIT" else "%.2f" % ren)
-            if choice.startswith("FIT"):
-                key = (r["blender"], n)
-                best = min(r["cells"][(n, c)][1] for c in ("FIT", "FIT refit") if (n, c) in r["cells"])
-                worst[key] = max(worst.get(key, 0), best)
-        cells.append(" / ".join(parts))
-    print("| %s | %s, %s | %s %% | %s | %s |" % (r["probe"], r["blender"], r["spp"], r["noise"], cells[0], cells[1]))
-for (blender, n), value in sorted(worst.items()):
-    print("worst over the probes, Blender %s, %d suns, better of fitted and fitted+refit: %.2f %%" % (blender, n, value),
-          file=sys.stderr)
-# Issue 9's bar: 16 suns within 2 %, 64 within 0.7 % of the world-lit render.
-for blender in sorted({r["blender"] for r in rows}):
-    for choice in ("FIT", "FIT refit"):
-        for n, bar in ((16, 2.0), (64, 0.7)):
-            mine = [r for r in rows if r["blender"] == blender and (n, choice) in r["cells"]]
-            over = ["%s %.2f" % (r["probe"].rsplit(".", 1)[0], r["cells"][(n, choice)][1]) for r in mine
-                    if r["cells"][(n, choice)][1] > bar]
-            print("Blender %s, %s, %d suns: %d of %d probes within %.1f %%; over: %s" % (
-                blender, choice.lower(), n, len(mine) - len(over), len(mine), bar, ", ".join(over) or "none"),
-                file=sys.stderr)
+def read_renders(paths, line, cell):
+    """bench_shadow_estimate.py's output, one file per Blender: a dict per probe and Blender (blender, probe, spp,
+    noise, cells), its cells[key] = value for each line `line` matches, (key, value) = cell(match)."""
+    rows = []
+    for path in paths:
+        current = None
+        for text in open(path):
+            if m := head.match(text):
+                current = {"blender": m[1], "probe": m[2], "spp": m[3], "noise": m[4], "cells": {}}
+                rows.append(current)
+            elif (m := line.match(text)) and current:
+                key, value = cell(m)
+                current["cells"][key] = value
+    return rows
+
+
+def main():
+    rows = read_renders(sys.argv[1:], line,
+                        lambda m: ((int(m[1]), m[2] + (" refit" if m[3] else "")), (float(m[4]), float(m[5]))))
+    print("| probe | Blender, spp | world noise | 16: hard / spread / **fitted** (estimate) / fitted+refit "
+          "| 64: hard / spread / **fitted** (estimate) / fitted+refit |")
+    print("|---|---|---|---|---|")
+    worst = {}
+    for r in sorted(rows, key=lambda r: (r["probe"].lower(), r["blender"])):
+        cells = []
+        for n in (16, 64):
+            parts = []
+            for choice in CHOICES:
+                if (n, choice) not in r["cells"]:
+                    parts.append("-")
+                    continue
+                est, ren = r["cells"][(n, choice)]
+                parts.append("**%.2f** (%.2f)" % (ren, est) if choice == "FIT" else "%.2f" % ren)
+                if choice.startswith("FIT"):
+                    key = (r["blender"], n)
+                    best = min(r["cells"][(n, c)][1] for c in ("FIT", "FIT refit") if (n, c) in r["cells"])
+                    worst[key] = max(worst.get(key, 0), best)
+            cells.append(" / ".join(parts))
+        print("| %s | %s, %s | %s %% | %s | %s |" % (r["probe"], r["blender"], r["spp"], r["noise"], cells[0], cells[1]))
+    for (blender, n), value in sorted(worst.items()):
+        print("worst over the probes, Blender %s, %d suns, better of fitted and fitted+refit: %.2f %%" % (blender, n, value),
+              file=sys.stderr)
+    # Issue 9's bar: 16 suns within 2 %, 64 within 0.7 % of the world-lit render.
+    for blender in sorted({r["blender"] for r in rows}):
+        for choice in ("FIT", "FIT refit"):
+            for n, bar in ((16, 2.0), (64, 0.7)):
+                mine = [r for r in rows if r["blender"] == blender and (n, choice) in r["cells"]]
+                over = ["%s %.2f" % (r["probe"].rsplit(".", 1)[0], r["cells"][(n, choice)][1]) for r in mine
+                        if r["cells"][(n, choice)][1] > bar]
+                print("Blender %s, %s, %d suns: %d of %d probes within %.1f %%; over: %s" % (
+                    blender, choice.lower(), n, len(mine) - len(over), len(mine), bar, ", ".join(over) or "none"),
+                    file=sys.stderr)
+
+
+if __name__ == "__main__":
+    main()
