@@ -12,11 +12,13 @@ import sys
 CHOICES = ("HARD", "SPREAD", "FIT", "FIT refit")
 head = re.compile(r"ESTIMATE Blender (\S+).*?, (\S+), (\d+) spp: world noise ([\d.]+) %")
 line = re.compile(r"ESTIMATE +(\d+) suns (\w+) +(refit)?: estimate ([\d.]+) %, rendered ([\d.]+) %")
+# Issue 9's bar: 16 suns within 2 %, 64 within 0.7 % of the world-lit render.
+BARS = {16: 2.0, 64: 0.7}
 
 
-def read_renders(paths, line, cell):
+def read_renders(paths, pattern, cell):
     """bench_shadow_estimate.py's output, one file per Blender: a dict per probe and Blender (blender, probe, spp,
-    noise, cells), its cells[key] = value for each line `line` matches, (key, value) = cell(match)."""
+    noise, cells), its cells[key] = value for each line `pattern` matches, (key, value) = cell(match)."""
     rows = []
     for path in paths:
         current = None
@@ -24,7 +26,7 @@ def read_renders(paths, line, cell):
             if m := head.match(text):
                 current = {"blender": m[1], "probe": m[2], "spp": m[3], "noise": m[4], "cells": {}}
                 rows.append(current)
-            elif (m := line.match(text)) and current:
+            elif (m := pattern.match(text)) and current:
                 key, value = cell(m)
                 current["cells"][key] = value
     return rows
@@ -56,10 +58,9 @@ def main():
     for (blender, n), value in sorted(worst.items()):
         print("worst over the probes, Blender %s, %d suns, better of fitted and fitted+refit: %.2f %%" % (blender, n, value),
               file=sys.stderr)
-    # Issue 9's bar: 16 suns within 2 %, 64 within 0.7 % of the world-lit render.
     for blender in sorted({r["blender"] for r in rows}):
         for choice in ("FIT", "FIT refit"):
-            for n, bar in ((16, 2.0), (64, 0.7)):
+            for n, bar in BARS.items():
                 mine = [r for r in rows if r["blender"] == blender and (n, choice) in r["cells"]]
                 over = ["%s %.2f" % (r["probe"].rsplit(".", 1)[0], r["cells"][(n, choice)][1]) for r in mine
                         if r["cells"][(n, choice)][1] > bar]
