@@ -3,9 +3,9 @@ N = 4..256 baked suns at equal samples, against the world-lit render: render tim
 of the lit pixels, tests/blender/render_scene.py). Cycles 3.4 picks lamps nearly uniformly (no light tree), so
 there more lamps add noise; 4.x and 5.x pick them through a light tree. Run it in each Blender the tests cover:
 
-    tests/blender/run.sh blender scripts/bench_render_counts.py build/probe_lights.zip ../shared [PROBE] [SAMPLES]
+    tests/blender/run.sh blender scripts/bench_render_counts.py build/probe_lights-0.1.0-linux_x64.zip ../shared [PROBE] [SAMPLES]
     tests/blender/run.sh ~/.cache/probelights/bpy-4.5.15/bin/python scripts/bench_render_counts.py \\
-        build/probe_lights.zip ../shared
+        build/probe_lights-0.1.0-linux_x64.zip ../shared
 """
 import os
 import sys

@@ -5,7 +5,7 @@ relative RMS difference beside the add-on's estimate of it, the renders' noise, 
 renders' noise taken out (README table; for every probe: scripts/bench_shadow_table.sh).
 
     tests/blender/run.sh ~/.cache/probelights/bpy-4.5.15/bin/python scripts/bench_shadow_estimate.py \\
-        build/probe_lights.zip ../shared [PROBE] [SAMPLES]
+        build/probe_lights-0.1.0-linux_x64.zip ../shared [PROBE] [SAMPLES]
 
 PROBELIGHTS_METHOD=both bakes with that method (default: the panel's default, auto).
 """

@@ -6,6 +6,6 @@ here=$(cd "$(dirname "$0")/.." && pwd)
 runner=$1 shared=${2:-$here/../shared}
 for probe in "$shared"/hdri/*.hdr "$shared"/hdri/*.exr /usr/share/blender/datafiles/studiolights/world/*.exr; do
   [[ -f $probe ]] || continue
-  bash "$here/tests/blender/run.sh" "$runner" "$here/scripts/bench_shadow_estimate.py" "$here/build/probe_lights.zip" \
+  bash "$here/tests/blender/run.sh" "$runner" "$here/scripts/bench_shadow_estimate.py" "$here/build/probe_lights-0.1.0-linux_x64.zip" \
     "$shared" "$probe" | grep '^ESTIMATE'
 done

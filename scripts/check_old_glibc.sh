@@ -9,7 +9,7 @@ modules=${1:-build/addon/probe_lights}
 root=${PROBELIGHTS_CACHE:-$HOME/.cache/probelights}/debian11-root
 if [[ ! -f $root/.complete ]]; then
   command -v debootstrap >/dev/null || apt-get install -y -qq debootstrap >/dev/null
-  rm -rf "$root"; debootstrap --variant=minbase bullseye "$root" http://deb.debian.org/debian >/dev/null
+  rm -rf "$root"; debootstrap --variant=minbase bullseye "$root" "$(scripts/lib/debian-archive.sh)" >/dev/null
   touch "$root/.complete"
 fi
 echo "glibc there: $(chroot "$root" ldd --version | head -1)"

@@ -21,8 +21,9 @@ KEEP_SECONDS = 60.0  # how long the core keeps its table buffers for the next ba
 def built_for():
     """The Python versions the package holds a module for, e.g. ['3.11', '3.13']."""
     found = set()
-    for path in glob.glob(os.path.join(os.path.dirname(__file__), "_probelights.cpython-*.so")):
-        m = re.search(r"cpython-(\d)(\d+)", os.path.basename(path))
+    for path in glob.glob(os.path.join(os.path.dirname(__file__), "_probelights.*")):
+        # Linux and macOS: .cpython-311-x86_64-linux-gnu.so, .cpython-311-darwin.so; Windows: .cp311-win_amd64.pyd
+        m = re.match(r"_probelights\.(?:cpython-|cp)(\d)(\d+)-", os.path.basename(path))
         if m:
             found.add((int(m.group(1)), int(m.group(2))))
     return ["%d.%d" % v for v in sorted(found)]

@@ -59,8 +59,10 @@ AutoCountResult autoCount(const Probe& probe, const Evaluator& evaluator, BakeOp
   auto attempt = [&](int n) {
     options.lights = n;
     BakeResult r = grid->bake(probe, options);
-    r.lights = finishLights(evaluator, std::move(r.lights), refit && r.lights.size() <= kMaxRefitLights,
-                            moveDirections, angles);
+    // Decided before the call: its by-value parameter may be moved into before the other arguments are read
+    // (clang evaluates them left to right, GCC right to left; the Windows and macOS builds are clang's).
+    const bool refitThese = refit && r.lights.size() <= kMaxRefitLights;
+    r.lights = finishLights(evaluator, std::move(r.lights), refitThese, moveDirections, angles);
     EffectErrors e = evaluator.evaluate(r.lights);
     best.tried.push_back({n, e.worst(evaluator.effects())});
     return std::pair{std::move(r), e};

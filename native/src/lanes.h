@@ -6,6 +6,10 @@
 // out of functions by reference: by value a four-double vector would change the ABI between the two builds.
 #pragma once
 
+#if defined(__x86_64__)
+#include <cpuid.h>
+#endif
+
 namespace probelights::lanes {
 
 using D2 = double __attribute__((vector_size(16)));
@@ -73,7 +77,12 @@ struct Lanes<Pairs> {
            reinterpret_cast<D2>(reinterpret_cast<I2>(v.hi) & m.hi)};
   }
   static double get(const Pairs& v, int k) { return k < 2 ? v.lo[k] : v.hi[k - 2]; }
-  static void set(Pairs& v, int k, double x) { (k < 2 ? v.lo[k] : v.hi[k - 2]) = x; }
+  static void set(Pairs& v, int k, double x) {  // clang: a vector element is no lvalue through ?:
+    if (k < 2)
+      v.lo[k] = x;
+    else
+      v.hi[k - 2] = x;
+  }
   static long long get(const PairMasks& m, int k) { return k < 2 ? m.lo[k] : m.hi[k - 2]; }
   static void make(double a, double b, double c, double d, Pairs& out) { out = {D2{a, b}, D2{c, d}}; }
   static void loadu(const double* p, Pairs& out) {
@@ -104,16 +113,24 @@ inline bool& portableOnly() {
   return portable;
 }
 
-// Whether the AVX2 clones run: the processor has AVX2 (checked once) and the tests have not said otherwise.
+// Whether the AVX2 clones run: the processor has AVX2 and the system saves its registers (checked
+// once), and the tests have not said otherwise. Asked of CPUID and XGETBV directly, as libgcc's
+// __builtin_cpu_supports("avx2") does, because the zig/clang runtime of the Windows and macOS builds has
+// no __cpu_model: leaf 1 ECX bits 27 (OSXSAVE) and 28 (AVX), XCR0 bits 1 and 2 (the system saves XMM and
+// YMM state), leaf 7 EBX bit 5 (AVX2).
 inline bool hasAvx2() {
 #if defined(__x86_64__)
   static const bool avx2 = [] {
-    __builtin_cpu_init();
-    return __builtin_cpu_supports("avx2") != 0;
+    unsigned a = 0, b = 0, c = 0, d = 0;
+    if (!__get_cpuid(1, &a, &b, &c, &d) || !(c & bit_OSXSAVE) || !(c & bit_AVX)) return false;
+    unsigned low = 0, high = 0;
+    __asm__("xgetbv" : "=a"(low), "=d"(high) : "c"(0));
+    if ((low & 6u) != 6u) return false;
+    return __get_cpuid_count(7, 0, &a, &b, &c, &d) && (b & bit_AVX2);
   }();
   return avx2 && !portableOnly();
 #else
-  return false;
+  return false;  // arm64: the portable build's pairs are NEON vectors
 #endif
 }
 

@@ -2,9 +2,9 @@
 would), build test worlds, and a tiny runner that prints one line per test and 'N passed, N failed'.
 
 Run a test file alone, in Debian's Blender or in a bpy module's Python (scripts/bpy-env.sh makes one):
-  tests/blender/run.sh blender tests/blender/test_addon.py build/probe_lights.zip ../shared
+  tests/blender/run.sh blender tests/blender/test_addon.py build/probe_lights-0.1.0-linux_x64.zip ../shared
   tests/blender/run.sh ~/.cache/probelights/bpy-4.5.15/bin/python tests/blender/test_addon.py \
-      build/probe_lights.zip ../shared
+      build/probe_lights-0.1.0-linux_x64.zip ../shared
 """
 
 import argparse
@@ -27,6 +27,7 @@ def args():
     p.add_argument("--studiolights", default="", help="default: the running Blender's own studio lights")
     p.add_argument("--save", default="", help="folder to save pictures in (README images)")
     p.add_argument("--size", default="", help="WIDTHxHEIGHTxSAMPLES for the render test (README images)")
+    p.add_argument("--only", default="", help="run only these tests (names, comma-separated)")
     return p.parse_args(argv)
 
 
@@ -200,8 +201,12 @@ def angle_deg(a, b):
 
 
 def run(tests):
+    only = [name for name in args().only.split(",") if name]
+    unknown = set(only) - {test.__name__ for test in tests}
+    if unknown:
+        raise SystemExit("no such test: %s" % ", ".join(sorted(unknown)))
     passed = failed = 0
-    for test in tests:
+    for test in [t for t in tests if not only or t.__name__ in only]:
         start = time.perf_counter()
         try:
             test()

@@ -7,7 +7,7 @@ rendered figure or 0.3 points, whichever is larger (issue 9). The estimate model
 uniform cone; 3.x: a disc of radius tan(angle / 2), conversion.sun_profile).
 
     tests/blender/run.sh ~/.cache/probelights/bpy-4.5.15/bin/python tests/blender/test_estimate.py \\
-        build/probe_lights.zip ../shared
+        build/probe_lights-0.1.0-linux_x64.zip ../shared
 """
 import math
 import os

@@ -9,6 +9,10 @@ import pytest
 
 import _probelights as pl
 
+# The add-on's module (build "pixels": every platform's, tests/wine/ runs Windows') has no file reading; the full
+# module (build/python) and the CLI run on Linux.
+full_only = pytest.mark.skipif(pl.build != "full", reason="reads files or runs the CLI: the full module's")
+
 
 def test_uniform_probe_total_is_four_pi_l():
     a = np.full((64, 128, 3), (0.5, 1.0, 2.0), np.float32)
@@ -64,6 +68,7 @@ def test_bad_requests_raise_with_the_cores_message(kwargs, message):
     assert issubclass(pl.Error, ValueError)
 
 
+@full_only
 @pytest.mark.parametrize("cuts, lights, said", [("both", 8, "fitted"), ("auto", 8, "fitted"), ("auto", 20, "started")])
 def test_both_cuts_keep_one_cut_and_say_which(bundled_probe, cuts, lights, said):
     kw = dict(lights=lights, centroid="energy2", effects="diffuse,shadow", refit=True, move_directions=True,
@@ -90,6 +95,7 @@ def test_bad_pixels():
         pl.bake(np.ones((0, 0, 3), np.float32))
 
 
+@full_only
 def test_bake_file_errors(tmp_path):
     with pytest.raises(pl.Error, match="no such file"):
         pl.bake_file(str(tmp_path / "missing.exr"))
@@ -98,6 +104,7 @@ def test_bake_file_errors(tmp_path):
         pl.bake_file(str(tmp_path / "junk.hdr"))
 
 
+@full_only
 def test_bake_file_on_the_bundled_probe(bundled_probe):
     r = pl.bake_file(bundled_probe, lights=16)
     assert r["source"]["width"] == 1024 and r["source"]["projection"] == "latlong"
@@ -106,6 +113,7 @@ def test_bake_file_on_the_bundled_probe(bundled_probe):
     assert set(r["timings_ms"]) == {"load", "tables", "partition", "lights"} and r["timings_ms"]["load"] > 0
 
 
+@full_only
 def test_bake_file_reads_band_by_band_into_a_coarse_grid(bundled_probe):
     """With nothing asked but the lights, on a grid coarser than the image, bake_file and bake_files read the
     file band by band into the grid (never whole) and give the lights of a whole load (evaluate=True needs the
@@ -137,6 +145,7 @@ def key_paths(value, prefix=""):
     return {p for k, v in value.items() for p in key_paths(v, prefix + "." + k if prefix else k)}
 
 
+@full_only
 @pytest.mark.parametrize("method", ["variance", "sh"])
 def test_the_module_and_the_cli_give_one_layout(bundled_probe, tmp_path, method):
     """The module's dict and the CLI's JSON come from the core's one result layout (result_layout.h): the same
@@ -197,6 +206,7 @@ def test_sh_sample_and_sh_bake(bundled_probe):
         pl.sh_sample(a, bands=4, epsilon=0.7)
 
 
+@full_only
 def test_the_module_and_the_cli_give_one_tradeoff_layout(bundled_probe, tmp_path):
     import json
     import subprocess
@@ -226,6 +236,7 @@ def test_tradeoff_rows(bundled_probe):
         pl.tradeoff(a, counts=[0])
 
 
+@full_only
 def test_bake_files_bakes_a_library_and_reports_a_bad_probe(bundled_probe, tmp_path):
     """A folder and a file: each result equals bake_file's, a probe that cannot be read is reported and the rest
     go on."""

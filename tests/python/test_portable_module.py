@@ -21,7 +21,7 @@ GLIBC_CEILING = (2, 28)  # blender.org's Blender needs 2.28; measured 2.18 (nati
 
 
 def zipped_modules():
-    with zipfile.ZipFile(os.path.join(BUILD, "probe_lights.zip")) as z:
+    with zipfile.ZipFile(os.path.join(BUILD, "probe_lights-0.1.0-linux_x64.zip")) as z:
         names = z.namelist()
     assert "probe_lights/blender_manifest.toml" in names and "probe_lights/__init__.py" in names
     return [n for n in names if re.match(r"probe_lights/_probelights\.cpython-\d+-x86_64-linux-gnu\.so$", n)]

@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# Prepares (once) and prints the folder of a Windows Python for the Wine tests: the official embeddable CPython
+# (from scripts/cross-toolchain.sh) with Windows wheels from PyPI unpacked beside it, and a Wine prefix.
+#   scripts/wine-env.sh module 311     -> CPython 3.11 with numpy and pytest (the module's Python tests)
+#   scripts/wine-env.sh bpy 4.5.15     -> Blender 4.5.15 as a Python module (PyPI's Windows bpy and what it needs)
+# Pinned in tests/wine/versions. Each folder holds python/ (python.exe), site-packages/ and prefix/ (WINEPREFIX);
+# tests/wine/run.sh runs a script in it. Everything stays in the cache (PROBELIGHTS_CACHE, ~/.cache/probelights).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+kind=$1 version=$2
+pin() { awk -v k="$1" '$1 == k {print $2}' tests/wine/versions; }
+case $kind in
+  module) abi=$version; requirements=("numpy==$(pin numpy-cp$abi)" "pytest==$(pin pytest)" "colorama==$(pin colorama)") ;;
+  bpy)    case $version in 4.*|5.0.*) abi=311 ;; *) abi=313 ;; esac; requirements=("bpy==$version") ;;
+  *) echo "usage: wine-env.sh module 311|313 | wine-env.sh bpy VERSION" >&2; exit 2 ;;
+esac
+command -v wine >/dev/null || { echo "wine missing: scripts/install-deps.sh --test installs it" >&2; exit 3; }
+toolchain=$(scripts/cross-toolchain.sh)
+cache=${PROBELIGHTS_CACHE:-$HOME/.cache/probelights}
+dir=$cache/wine-$kind-$version-$(pin numpy-cp$abi)-$(pin pytest)
+[[ $kind == bpy ]] && dir=$cache/wine-bpy-$version
+if [[ -f $dir/.complete ]]; then echo "$dir"; exit 0; fi
+rm -rf "$dir"; mkdir -p "$dir/site-packages"
+cp -r "$toolchain/embed/cp$abi" "$dir/python"
+# The embeddable CPython reads sys.path from its ._pth file alone (no PYTHONPATH, not the script's folder).
+printf 'python%s.zip\n.\n..\\site-packages\nimport site\n' "$abi" > "$dir/python/python$abi._pth"
+# pip of the same CPython minor version (pyenv's, then the system's): Requires-Python is checked against it.
+python=""
+for candidate in "${PYENV_ROOT:-$HOME/.pyenv}"/versions/3.${abi:1}.*/bin/python3.${abi:1} /usr/bin/python3.${abi:1}; do
+  [[ -x $candidate ]] && { python=$candidate; break; }
+done
+[[ -n $python ]] || { echo "no CPython 3.${abi:1} here to run pip for the Windows one" >&2; exit 3; }
+"$python" -m pip install -q --disable-pip-version-check --no-compile --target "$dir/site-packages" \
+  --platform win_amd64 --python-version "3.${abi:1}" --implementation cp --only-binary=:all: \
+  "${requirements[@]}" >&2
+export WINEPREFIX=$dir/prefix WINEDEBUG=-all WINEDLLOVERRIDES="mscoree,mshtml=;winemenubuilder.exe=d"
+wineboot --init >/dev/null 2>&1 || wine wineboot --init >/dev/null 2>&1
+touch "$dir/.complete"
+echo "$dir"
