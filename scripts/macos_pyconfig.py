@@ -13,7 +13,7 @@ PyLong digits, hashing), a few feature switches, and the platform's feature-test
 - Linux's feature-test macros (_GNU_SOURCE, _POSIX_C_SOURCE ...: on Darwin they hide the BSD interfaces) and
   the HAVE_* of Linux-only headers and calls are dropped; _DARWIN_C_SOURCE is defined, as CPython's configure
   does on Darwin.
-tests/cross/check_macos_pyconfig.sh compiles static_asserts of every size and alignment macro against sizeof and
+tests/python/test_platform_modules.py compiles static_asserts of every size and alignment macro against sizeof and
 alignof on both macOS targets.
 """
 

@@ -19,8 +19,9 @@ void* allocate(std::size_t bytes) {
 
 void* allocate(std::size_t bytes, std::align_val_t alignment) {
   void* p = nullptr;
-  const std::size_t a = static_cast<std::size_t>(alignment) < sizeof(void*) ? sizeof(void*)
-                                                                          : static_cast<std::size_t>(alignment);
+  const std::size_t a = static_cast<std::size_t>(alignment) < sizeof(void*)
+                            ? sizeof(void*)
+                            : static_cast<std::size_t>(alignment);
   if (posix_memalign(&p, a, bytes ? bytes : 1) != 0) throw std::bad_alloc();
   return p;
 }
@@ -58,7 +59,9 @@ PROBELIGHTS_HIDDEN void operator delete(void* p, std::align_val_t) noexcept { st
 PROBELIGHTS_HIDDEN void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
 PROBELIGHTS_HIDDEN void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
 PROBELIGHTS_HIDDEN void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
-PROBELIGHTS_HIDDEN void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept { std::free(p); }
+PROBELIGHTS_HIDDEN void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept {
+  std::free(p);
+}
 PROBELIGHTS_HIDDEN void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcept {
   std::free(p);
 }

@@ -28,6 +28,7 @@ def args():
     p.add_argument("--save", default="", help="folder to save pictures in (README images)")
     p.add_argument("--size", default="", help="WIDTHxHEIGHTxSAMPLES for the render test (README images)")
     p.add_argument("--only", default="", help="run only these tests (names, comma-separated)")
+    p.add_argument("--skip", default="", help="leave these tests out (names, comma-separated), saying so")
     return p.parse_args(argv)
 
 
@@ -202,11 +203,14 @@ def angle_deg(a, b):
 
 def run(tests):
     only = [name for name in args().only.split(",") if name]
-    unknown = set(only) - {test.__name__ for test in tests}
+    skip = [name for name in args().skip.split(",") if name]
+    unknown = set(only + skip) - {test.__name__ for test in tests}
     if unknown:
         raise SystemExit("no such test: %s" % ", ".join(sorted(unknown)))
+    for name in skip:
+        print("SKIP %s (left out by --skip)" % name, flush=True)
     passed = failed = 0
-    for test in [t for t in tests if not only or t.__name__ in only]:
+    for test in [t for t in tests if (not only or t.__name__ in only) and t.__name__ not in skip]:
         start = time.perf_counter()
         try:
             test()

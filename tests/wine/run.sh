@@ -8,6 +8,11 @@ env=$1; shift
 export WINEPREFIX=$env/prefix WINEDEBUG=-all WINEDLLOVERRIDES="mscoree,mshtml=;winemenubuilder.exe=d"
 export PYTHONIOENCODING=utf-8 PYTHONUNBUFFERED=1
 here=$(cd "$(dirname "$0")" && pwd)
+# Every Python process of the environment patches Wine's gaps (Blender's extension installer runs one of its
+# own): site imports sitecustomize, which this run puts in (replaced whole: runs may share the environment).
+for file in wine_gaps.py sitecustomize.py; do
+  cp "$here/$file" "$env/site-packages/.$file.$$" && mv -f "$env/site-packages/.$file.$$" "$env/site-packages/$file"
+done
 # Wine's console python.exe cannot write to a plain file: its output goes through a pipe; CRs are dropped.
 wine "$env/python/python.exe" "$here/launch.py" "$@" </dev/null 2>&1 | tr -d '\r'
 exit "${PIPESTATUS[0]}"

@@ -7,6 +7,11 @@ Nothing here runs on real Windows (patch() returns at once when ntdll has no win
   that end the process when called; numpy 2 calls crealf while it imports. Their bodies are replaced by the few
   instructions they are on Windows x64 (a float complex comes in RCX by value, a double complex by reference;
   long double is double there; the result goes back in XMM0).
+- Blender 5.x maps image files through kernelbase's VirtualAlloc2 and MapViewOfFile3 with placeholders
+  (MEM_RESERVE_PLACEHOLDER) when GetProcAddress finds them, which Wine 8 exports but does not support: every
+  image load fails ("couldn't get mapping"). The export's name is changed in kernelbase's export table in memory
+  (MapViewOfFile3 -> MapViewOfFile0, which keeps the table sorted), so Blender takes its own fallback, the plain
+  CreateFileMapping and MapViewOfFile that Blender used before and Wine supports.
 """
 
 import ctypes
@@ -24,6 +29,31 @@ ACCESSORS = {
 
 def under_wine():
     return sys.platform == "win32" and hasattr(ctypes.WinDLL("ntdll"), "wine_get_version")
+
+
+def rename_export(kernel, dll, name, new_name):
+    """Renames one export of a loaded DLL in its PE export table (the names are sorted: keep the order)."""
+    assert len(new_name) == len(name)
+    kernel.LoadLibraryW.restype = ctypes.c_void_p
+    base = kernel.LoadLibraryW(dll)
+    if not base:
+        return False
+    u32 = lambda address: ctypes.c_uint32.from_address(address).value  # noqa: E731
+    optional = base + u32(base + 0x3C) + 24          # PE signature (4) + COFF header (20)
+    if ctypes.c_uint16.from_address(optional).value != 0x20B:
+        return False                                 # not PE32+
+    exports = base + u32(optional + 112)             # DataDirectory[0] of a PE32+ optional header
+    count, names = u32(exports + 24), base + u32(exports + 32)
+    for i in range(count):
+        address = base + u32(names + 4 * i)
+        if ctypes.string_at(address) == name:
+            old = ctypes.c_uint32()
+            if not kernel.VirtualProtect(address, len(name), 0x04, ctypes.byref(old)):  # PAGE_READWRITE
+                return False
+            ctypes.memmove(address, new_name, len(new_name))
+            kernel.VirtualProtect(address, len(name), old.value, ctypes.byref(old))
+            return True
+    return False
 
 
 def patch():
@@ -50,4 +80,6 @@ def patch():
         kernel.VirtualProtect(address, len(code), old.value, ctypes.byref(old))
         kernel.FlushInstructionCache(kernel.GetCurrentProcess(), address, len(code))
         patched.append(name)
+    if rename_export(kernel, "kernelbase.dll", b"MapViewOfFile3", b"MapViewOfFile0"):
+        patched.append("MapViewOfFile3")
     return patched
