@@ -1,8 +1,8 @@
-// Linked only into the macOS modules (addon/CMakeLists.txt). They carry libc++ statically (zig c++), and its
-// replaceable operator new and delete are exported weak definitions; zig's Mach-O linker has no
-// -exported_symbol to keep them in, so the module would offer them to dyld's weak coalescing with every image
-// loaded after it. Defined here, hidden, they win over libc++'s weak ones at link time: the module's allocations
-// (and its libc++'s) go to malloc and free inside it, and it exports PyInit__probelights alone
+// Linked only into the macOS modules (addon/CMakeLists.txt). They carry libc++ statically (zig c++), and
+// its replaceable operator new and delete are exported weak definitions; zig's Mach-O linker has no
+// -exported_symbol to keep them in, so the module would offer them to dyld's weak coalescing with every
+// image loaded after it. Defined here, hidden, they win over libc++'s weak ones at link time: the module's
+// allocations (and its libc++'s) go to malloc and free inside it, and it exports PyInit__probelights alone
 // (tests/python/test_platform_modules.py).
 #include <cstdlib>
 #include <new>
