@@ -120,8 +120,10 @@ ImageView viewOf(Pixels& pixels) {
   if (pixels.ndim() == 3 && pixels.shape(2) > 1 &&
       pixels.strides(2) != static_cast<py::ssize_t>(sizeof(float)))
     pixels = py::array_t<float, py::array::forcecast | py::array::c_style>::ensure(pixels);
+  // A stride that is not a whole number of floats, or 0 (a broadcast view repeats one row or pixel; the
+  // view's 0 means "contiguous" and would read past the array): copied into a C-contiguous array first.
   for (int k = 0; k < 2; ++k)
-    if (pixels.strides(k) % static_cast<py::ssize_t>(sizeof(float)) != 0)
+    if (pixels.strides(k) % static_cast<py::ssize_t>(sizeof(float)) != 0 || pixels.strides(k) == 0)
       pixels = py::array_t<float, py::array::forcecast | py::array::c_style>::ensure(pixels);
   return ImageView{pixels.data(),
                    static_cast<int>(pixels.shape(1)),
@@ -215,6 +217,7 @@ py::list bakeFiles(const std::vector<std::string>& inputs, const std::string& pr
                    const std::string& effects, bool evaluate, bool refit, bool moveDirections,
                    double maxError, int evaluatorWidth, const std::string& sunAngles,
                    const std::string& sunProfile, const std::string& nonfinite, const std::string& cuts) {
+  if (inputs.empty()) throw Error("bake_files needs at least one path (a file, folder or glob)");
   const auto [probeOptions, options, accuracy] = fileRequest(
       projection, method, lights, centroid, resolution, horizon, bands, epsilon, effects, evaluate, refit,
       moveDirections, maxError, evaluatorWidth, sunAngles, sunProfile, nonfinite, cuts);

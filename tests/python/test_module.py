@@ -39,6 +39,17 @@ def test_flipped_and_strided_views_are_read_in_place():
     assert np.allclose(grey["lights"]["rgb"][:, 0], grey["lights"]["rgb"][:, 1])
 
 
+def test_broadcast_views_are_read_as_the_arrays_they_show():
+    """A stride of 0 (np.broadcast_to) repeats a row or a pixel: read as the array it shows, never past it."""
+    row = np.random.default_rng(4).random((1, 128, 3), dtype=np.float32)
+    shown = np.broadcast_to(row, (64, 128, 3))
+    r1 = pl.bake(shown, lights=6)
+    r2 = pl.bake(np.ascontiguousarray(shown), lights=6)
+    assert np.array_equal(r1["lights"]["rgb"], r2["lights"]["rgb"])
+    pixel = np.broadcast_to(np.ones((1, 1, 3), np.float32), (64, 128, 3))
+    assert list(pl.bake(pixel, lights=4)["total_rgb"]) == pytest.approx([4 * math.pi] * 3, rel=1e-9)
+
+
 def test_other_dtypes_are_converted():
     r = pl.bake(np.ones((8, 16, 3), np.float64), lights=2)
     assert r["lights"]["rgb"].sum() == pytest.approx(3 * 4 * math.pi)
@@ -93,6 +104,12 @@ def test_bad_pixels():
         pl.bake(np.ones(10, np.float32))
     with pytest.raises(pl.Error, match="empty"):
         pl.bake(np.ones((0, 0, 3), np.float32))
+
+
+@full_only
+def test_bake_files_needs_a_path():
+    with pytest.raises(pl.Error, match="at least one path"):
+        pl.bake_files([])
 
 
 @full_only
