@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The Windows module's Python tests, run under Wine in the official embeddable CPython of one ABI (311 or 313):
-# tests/python/test_module.py (what needs no files or CLI), test_same_bits.py (the Linux build's lights and errors
-# to the last bit) and the add-on's bpy-free rules, with the module taken out of the Windows zip as a user gets it.
+# tests/python/test_module.py (what needs no files or CLI), test_same_bits.py (the Linux build's lights and errors,
+# within the C libraries' last bits) and the add-on's bpy-free rules, with the module taken out of the Windows zip
+# as a user gets it.
 #   tests/wine/module_tests.sh ABI BUILD_DIR
 set -euo pipefail
 abi=$1 build=$(cd "$2" && pwd)
