@@ -675,6 +675,27 @@ class RecordingLayout:
         return type("Props", (), {})()
 
 
+def test_another_platforms_zip_is_refused_and_the_installed_one_kept():
+    """Each zip names its one platform (addon/package.cmake): Blender 4.2+ refuses another platform's zip, and the
+    add-on already installed stays as it was, enabled, with its own modules."""
+    if bpy.app.version < (4, 2, 0):
+        print("  skipped: Blender %s installs legacy add-ons, which name no platform" % bpy.app.version_string)
+        return
+    here = "windows_x64" if sys.platform == "win32" else "linux_x64"
+    other = "linux_x64" if here == "windows_x64" else "windows_x64"
+    wrong = ARGS.zip.replace("-%s.zip" % here, "-%s.zip" % other)
+    if wrong == ARGS.zip or not os.path.exists(wrong):
+        print("  skipped: no %s zip beside %s" % (other, ARGS.zip))
+        return
+    package = os.path.dirname(harness.addon_module("native").__file__)
+    modules = lambda: sorted(os.path.basename(m) for m in glob.glob(os.path.join(package, "_probelights.*")))  # noqa
+    before = modules()
+    bpy.ops.extensions.package_install_files(filepath=wrong, repo="user_default", enable_on_install=True)
+    assert harness.ADDON in bpy.context.preferences.addons
+    assert modules() == before and before, (before, modules())
+    print("  %s refused by Blender %s; %s kept" % (os.path.basename(wrong), bpy.app.version_string, here))
+
+
 def test_panel_draws_at_default_width_in_this_blender():
     """The panel's drawing code in this Blender (fonts, preferences, operators it names), as the World properties
     editor at its default width would call it, after a bake with warnings and a tradeoff: every line fits."""
@@ -716,4 +737,5 @@ harness.run([test_register_unregister, test_real_probes_bake_with_their_energy,
              test_eevee_shadow_pool_offer_and_restore, test_the_read_buffer_is_reused_only_when_nobody_holds_it,
              test_the_cores_table_buffers_are_given_back_a_minute_after_the_last_bake,
              test_inputs_that_are_not_what_they_claim, test_thousands_of_lamps_go_in_one_batch,
-             test_panel_draws_at_default_width_in_this_blender])
+             test_panel_draws_at_default_width_in_this_blender,
+             test_another_platforms_zip_is_refused_and_the_installed_one_kept])

@@ -11,9 +11,15 @@ env=$(bash "$repo/scripts/wine-env.sh" bpy "$version")
 profile=$(mktemp -d)
 trap 'rm -rf "$profile"' EXIT
 export WINEPREFIX=$env/prefix WINEDEBUG=-all
-windows() { winepath -w "$1" 2>/dev/null; }  # Blender takes its profile folders as Windows paths
-export BLENDER_USER_SCRIPTS=$(windows "$profile/scripts") BLENDER_USER_CONFIG=$(windows "$profile/config")
-export BLENDER_USER_EXTENSIONS=$(windows "$profile/extensions") BLENDER_USER_DATAFILES=$(windows "$profile/datafiles")
+windows() {  # Blender takes its profile folders as Windows paths
+  local path
+  path=$(winepath -w "$1" 2>/dev/null) && [[ -n $path ]] || { echo "winepath failed on $1" >&2; exit 1; }
+  echo "$path"
+}
+profile_env=()
+for kind in scripts config extensions datafiles; do
+  profile_env+=("--env=BLENDER_USER_${kind^^}=$(windows "$profile/$kind")")
+done
 package=$(sed -n 's/^version = "\(.*\)"/\1/p' "$repo/addon/probe_lights/blender_manifest.toml")
-bash "$here/run.sh" "$env" "$test" -- --zip "$(windows "$build/probe_lights-$package-windows_x64.zip")" \
-  --shared "$(windows "$repo/../shared")" "$@"
+bash "$here/run.sh" "$env" "${profile_env[@]}" "$test" -- \
+  --zip "$(windows "$build/probe_lights-$package-windows_x64.zip")" --shared "$(windows "$repo/../shared")" "$@"

@@ -2,8 +2,11 @@
 `python -m MODULE ARGS` would on Windows, after wine_gaps.patch() (test code only: nothing of it is in the
 product). The embeddable CPython does not put the script's folder on sys.path: done here.
 
-    wine python.exe tests/wine/launch.py SCRIPT.py [ARGS...]
-    wine python.exe tests/wine/launch.py -m pytest [ARGS...]
+    wine python.exe tests/wine/launch.py [--env=NAME=VALUE ...] SCRIPT.py [ARGS...]
+    wine python.exe tests/wine/launch.py [--env=NAME=VALUE ...] -m pytest [ARGS...]
+
+--env sets a variable in the Windows process before anything runs (Blender reads its profile folders from
+BLENDER_USER_*): the tests do not count on Wine passing the Linux environment on.
 """
 
 import os
@@ -14,6 +17,9 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import wine_gaps  # noqa: E402
 
 wine_gaps.patch()
+while sys.argv[1].startswith("--env="):
+    name, value = sys.argv.pop(1)[len("--env="):].split("=", 1)
+    os.environ[name] = value
 if sys.argv[1] == "-m":
     sys.argv = sys.argv[2:]
     runpy.run_module(sys.argv[0], run_name="__main__", alter_sys=True)
