@@ -6,8 +6,8 @@ between glibc and Windows' UCRT (each within an ulp of the true value), and the 
 differences on to ~1e-10 (measured on Windows: solid angles and directions within 4e-16 without a refit, colours
 within 1.1e-10 with one).
 
-    python3 tests/python/test_same_bits.py OUT.json         writes the reference with the module on sys.path
-    PROBELIGHTS_REFERENCE=OUT.json pytest test_same_bits.py compares the module on sys.path with it
+    python3 tests/python/test_same_results.py OUT.json         writes the reference with the module on sys.path
+    PROBELIGHTS_REFERENCE=OUT.json pytest test_same_results.py compares the module on sys.path with it
 
 The bakes: the bundled probe (read by tests/python/rgbe.py, so no platform needs OpenImageIO) as the add-on bakes
 it (Auto cuts, fitted sun angles, Refit with moved directions, its diffuse and shadow errors estimated), and a
