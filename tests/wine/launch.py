@@ -1,6 +1,6 @@
 """Runs a script or module in the Windows CPython of scripts/wine-env.sh under Wine, as `python SCRIPT ARGS` or
-`python -m MODULE ARGS` would on Windows, after wine_gaps.patch() (test code only: nothing of it is in the
-product). The embeddable CPython does not put the script's folder on sys.path: done here.
+`python -m MODULE ARGS` would on Windows (Wine's gaps are already filled: site imported the sitecustomize that
+tests/wine/run.sh puts in). The embeddable CPython does not put the script's folder on sys.path: done here.
 
     wine python.exe tests/wine/launch.py [--env=NAME=VALUE ...] SCRIPT.py [ARGS...]
     wine python.exe tests/wine/launch.py [--env=NAME=VALUE ...] -m pytest [ARGS...]
@@ -13,10 +13,6 @@ import os
 import runpy
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import wine_gaps  # noqa: E402
-
-wine_gaps.patch()
 while sys.argv[1].startswith("--env="):
     name, value = sys.argv.pop(1)[len("--env="):].split("=", 1)
     os.environ[name] = value
