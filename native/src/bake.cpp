@@ -1,5 +1,6 @@
 #include "probelights/bake.h"
 
+#include <cstdio>
 #include <memory>
 
 #include "parallel.h"
@@ -33,6 +34,22 @@ PixelCut toPixels(const MomentTable& table, const Cut& cut) {
   return {r, cut.axis, position};
 }
 
+// Says which channels of the probe sum to no light at all (much negative light, e.g. an over-sharpened
+// probe): lamps cannot be negative, so the lights carry none of such a channel (lights.cpp) and do not add
+// up to it.
+void noteNonPositiveChannels(BakeResult& result) {
+  static const char* kNames[3] = {"red", "green", "blue"};
+  for (int k = 0; k < 3; ++k)
+    if (!(result.totalRgb[k] > 0)) {
+      char line[200];
+      std::snprintf(line, sizeof line,
+                    "the probe's %s light sums to %.4g, not above 0 (negative samples): lamps cannot be "
+                    "negative, so the lights carry no %s",
+                    kNames[k], result.totalRgb[k], kNames[k]);
+      result.notes.push_back(line);
+    }
+}
+
 }  // namespace
 
 BakeResult bake(const Probe& probe, const BakeOptions& options) {
@@ -47,6 +64,7 @@ BakeResult bake(const Probe& probe, const BakeOptions& options) {
     result.notes = std::move(sh.notes);
     result.timings = {sh.projectMs, sh.assignMs, sh.lightsMs};
     result.totalRgb = probe.integral();  // an independent pass: the lights must add up to it
+    noteNonPositiveChannels(result);
     return result;
   }
 
@@ -111,6 +129,7 @@ BakeResult bake(const Probe& probe, const MomentTable& table, const BakeOptions&
     result.lights = lightsFromRegions(probe, result.regions, options.centroid);
   }
   result.timings.lightsMs = t.ms();
+  noteNonPositiveChannels(result);
   return result;
 }
 

@@ -41,6 +41,7 @@ GridProbe loadGrid(const std::string& path, const ProbeOptions& options, const B
   MomentTable table(info.width, info.height, cellSize, bake.centroid);
   const int rows = ((bandRows > 0 ? bandRows : 256) + cellSize - 1) / cellSize * cellSize;
   double tablesMs = 0;
+  report.notes.insert(report.notes.end(), info.notes.begin(), info.notes.end());
   readImageBands(path, rows, [&](const ImageView& band) {
     const Probe part = Probe::band(band, projection);
     report.add(part.report());

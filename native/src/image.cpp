@@ -4,6 +4,8 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <future>
@@ -23,9 +25,20 @@ std::string oneLine(std::string why) {
   return why;
 }
 
+// How an integer image's values become linear light. A float image (EXR, .hdr, PFM, float TIFF) is linear
+// already. An 8- or 16-bit one (PNG, JPEG, TIFF) holds display values: decoded with the sRGB curve unless
+// the file says it is linear or names a gamma, as Blender reads such an image (its default colour space for
+// them is sRGB).
+struct Transfer {
+  enum Kind { Linear, Srgb, Gamma } kind = Linear;
+  float gamma = 1;
+};
+
 // An open image file: OpenImageIO's reader, and the file's bytes when it reads them from memory.
 struct OpenImage {
   std::vector<unsigned char> bytes;
+  std::vector<std::string> notes;  // how it is read, for the probe's report (Image::notes)
+  Transfer transfer;
   std::unique_ptr<OIIO::Filesystem::IOMemReader> memory;
   std::unique_ptr<OIIO::ImageInput> in;  // destroyed first (members go in reverse order)
 };
@@ -36,14 +49,140 @@ struct OpenImage {
 // keep OpenImageIO's reads, so a big probe's bytes are never held beside its pixels.
 constexpr std::uintmax_t kReadWholeBytes = 32u << 20;
 
-// Opens `path` and checks it is a 2D image with pixels; its spec is in->spec(). fromMemory: read a small
-// file whole first (kReadWholeBytes).
-OpenImage openImage(const std::string& path, bool fromMemory = false) {
+// Refuses what is not a regular file before a byte is read: a FIFO would block the read forever, a device
+// might never end; a symbolic link loop or a folder that cannot be searched says so rather than "no such
+// file".
+void checkRegularFile(const std::string& path) {
+  namespace fs = std::filesystem;
+  if (path.find('\0') != std::string::npos) throw Error("cannot read probe: its path holds a NUL character");
   std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw Error("cannot read probe '" + path + "': no such file");
-  if (std::filesystem::is_directory(path, ec))
-    throw Error("cannot read probe '" + path + "': it is a directory");
+  const fs::file_status status = fs::status(path, ec);
+  if (ec && ec != std::errc::no_such_file_or_directory)
+    throw Error("cannot read probe '" + path + "': " + ec.message());
+  switch (status.type()) {
+    case fs::file_type::not_found:
+      throw Error("cannot read probe '" + path + "': no such file");
+    case fs::file_type::regular:
+      return;
+    case fs::file_type::directory:
+      throw Error("cannot read probe '" + path + "': it is a directory");
+    case fs::file_type::fifo:
+      throw Error("cannot read probe '" + path + "': it is a FIFO (named pipe), not a file");
+    case fs::file_type::socket:
+      throw Error("cannot read probe '" + path + "': it is a socket, not a file");
+    case fs::file_type::block:
+    case fs::file_type::character:
+      throw Error("cannot read probe '" + path + "': it is a device, not a file");
+    default:
+      throw Error("cannot read probe '" + path + "': not a regular file");
+  }
+}
 
+// The most pixels a file may claim: a 32768 x 32768 image (12 GB as float RGB), beyond any probe published.
+constexpr std::uint64_t kMaxPixels = std::uint64_t{1} << 30;
+// The most pixels per byte of file any encoding reaches: a constant 16K image is 2,724 pixels a byte as DWAB
+// EXR, 342 as PNG, 167 as ZIP EXR, 15 as .hdr (measured with oiiotool); 20,000 leaves a margin of 7.
+constexpr std::uint64_t kMaxPixelsPerByte = 20000;
+
+// Refuses a header that claims more pixels than its file could hold, before memory is taken for them (a
+// 255-byte .hdr claiming 600000 x 300000 pixels took 7.2 GB before failing).
+void checkClaims(const std::string& path, const OIIO::ImageSpec& spec, std::uintmax_t fileBytes) {
+  const std::uint64_t w = static_cast<std::uint64_t>(std::max(spec.full_width, spec.width));
+  const std::uint64_t h = static_cast<std::uint64_t>(std::max(spec.full_height, spec.height));
+  const std::string size = std::to_string(w) + "x" + std::to_string(h);
+  if (w * h > kMaxPixels)
+    throw Error("cannot read probe '" + path + "': " + size + " pixels, more than the 1-gigapixel limit");
+  if (fileBytes > 0 && w * h > fileBytes * kMaxPixelsPerByte)
+    throw Error("cannot read probe '" + path + "': its header claims " + size + " pixels, more than its " +
+                std::to_string(fileBytes) + " bytes can hold (a damaged or hostile file)");
+}
+
+std::string channelName(const OIIO::ImageSpec& spec, int c) {
+  std::string name = c < static_cast<int>(spec.channelnames.size()) ? spec.channelnames[c] : "";
+  if (const auto dot = name.rfind('.'); dot != std::string::npos) name = name.substr(dot + 1);  // layer.R
+  for (char& ch : name) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+  return name;
+}
+
+std::string channelList(const OIIO::ImageSpec& spec) {
+  std::string names;
+  for (int c = 0; c < spec.nchannels; ++c)
+    names += (c ? ", " : "") + (c < static_cast<int>(spec.channelnames.size()) ? spec.channelnames[c] : "?");
+  return names;
+}
+
+// The channels a probe is read from (image.h's ImageView: 1 or 2 grey, 3+ RGB first), checked by name: an
+// image whose first three channels are not R, G, B, or whose two are not grey + alpha, is refused rather
+// than read as if it were colour.
+void checkChannels(const std::string& path, const OIIO::ImageSpec& spec, std::vector<std::string>& notes) {
+  if (spec.nchannels == 1) return;
+  if (spec.nchannels == 2) {
+    if (channelName(spec, 1) == "A") {
+      notes.push_back("channels " + channelList(spec) + ": read as grey, alpha ignored");
+      return;
+    }
+    throw Error("cannot read probe '" + path + "': its 2 channels (" + channelList(spec) +
+                ") are not grey and alpha; probelights reads grey, grey + alpha, or R, G, B (+ more)");
+  }
+  if (channelName(spec, 0) == "R" && channelName(spec, 1) == "G" && channelName(spec, 2) == "B") {
+    if (spec.nchannels > 4 || (spec.nchannels == 4 && channelName(spec, 3) != "A"))
+      notes.push_back("channels " + channelList(spec) + ": R, G, B read, the others ignored");
+    return;
+  }
+  throw Error("cannot read probe '" + path + "': its channels (" + channelList(spec) +
+              ") do not begin with R, G, B; probelights reads grey, grey + alpha, or R, G, B (+ more)");
+}
+
+Transfer transferOf(const OIIO::ImageSpec& spec, const std::string& format, std::vector<std::string>& notes) {
+  const OIIO::TypeDesc::BASETYPE base = static_cast<OIIO::TypeDesc::BASETYPE>(spec.format.basetype);
+  if (base == OIIO::TypeDesc::FLOAT || base == OIIO::TypeDesc::HALF || base == OIIO::TypeDesc::DOUBLE)
+    return {};
+  std::string space = spec.get_string_attribute("oiio:ColorSpace");
+  std::string lower = space;
+  for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string what = std::to_string(spec.format.size() * 8) + "-bit " + format;
+  if (lower.find("linear") != std::string::npos || lower.rfind("lin_", 0) == 0) {
+    notes.push_back(what + ": read as linear light (the file says " + space + ")");
+    return {};
+  }
+  const float gamma = spec.get_float_attribute("oiio:Gamma", 0.0f);
+  if (lower.rfind("gamma", 0) == 0 && gamma > 0.1f && gamma < 10.0f) {
+    notes.push_back(what + ": values decoded with gamma " + std::to_string(gamma).substr(0, 4) +
+                    " to linear light (the file's)");
+    return {Transfer::Gamma, gamma};
+  }
+  notes.push_back(what +
+                  ": sRGB values decoded to linear light, as Blender reads them; an HDR probe "
+                  "(EXR, .hdr) keeps the light brighter than white");
+  return {Transfer::Srgb};
+}
+
+// Applies `t` to the colour channels (not alpha or others) of `count` pixels of `channels` floats.
+void decode(const Transfer& t, float* pixels, std::size_t count, int channels) {
+  if (t.kind == Transfer::Linear) return;
+  const int colour = channels < 3 ? 1 : 3;
+  for (std::size_t i = 0; i < count; ++i)
+    for (int c = 0; c < colour; ++c) {
+      float& v = pixels[i * channels + c];
+      if (t.kind == Transfer::Gamma)
+        v = v > 0 ? std::pow(v, t.gamma) : 0.0f;
+      else  // IEC 61966-2-1
+        v = v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
+    }
+}
+
+bool windowsDiffer(const OIIO::ImageSpec& spec) {
+  return spec.full_width > 0 && spec.full_height > 0 &&
+         (spec.x != spec.full_x || spec.y != spec.full_y || spec.width != spec.full_width ||
+          spec.height != spec.full_height);
+}
+
+// Opens `path` and checks it is a 2D image with pixels that a probe can be read from (checkRegularFile,
+// checkClaims, checkChannels); its spec is in->spec(). fromMemory: read a small file whole first
+// (kReadWholeBytes).
+OpenImage openImage(const std::string& path, bool fromMemory = false) {
+  checkRegularFile(path);
+  std::error_code ec;
   OpenImage o;
   const std::uintmax_t size = std::filesystem::file_size(path, ec);
   if (fromMemory && !ec && size > 0 && size <= kReadWholeBytes) {
@@ -68,15 +207,33 @@ OpenImage openImage(const std::string& path, bool fromMemory = false) {
     throw Error("cannot read probe '" + path + "': the image is empty (" + std::to_string(spec.width) + "x" +
                 std::to_string(spec.height) + ")");
   if (spec.depth > 1) throw Error("cannot read probe '" + path + "': volume images are not probes");
+  checkClaims(path, spec, ec ? 0 : size);
+  checkChannels(path, spec, o.notes);
+  o.transfer = transferOf(spec, o.in->format_name(), o.notes);
+  if (windowsDiffer(spec)) {
+    const OIIO::ROI data(spec.x, spec.x + spec.width, spec.y, spec.y + spec.height);
+    const OIIO::ROI full(spec.full_x, spec.full_x + spec.full_width, spec.full_y,
+                         spec.full_y + spec.full_height);
+    if (!OIIO::roi_intersection(data, full).defined() || OIIO::roi_intersection(data, full).npixels() == 0)
+      throw Error("cannot read probe '" + path + "': its data window lies outside its display window");
+    o.notes.push_back("data window " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                      " at (" + std::to_string(spec.x - spec.full_x) + ", " +
+                      std::to_string(spec.y - spec.full_y) + ") of the " + std::to_string(spec.full_width) +
+                      "x" + std::to_string(spec.full_height) +
+                      " display window: the sphere is the display window, the rest of it read as 0");
+  }
   return o;
 }
 
-Image description(const OIIO::ImageInput& in) {
+// The image as a probe sees it: the display window's size.
+Image description(const OpenImage& o) {
+  const OIIO::ImageSpec& spec = o.in->spec();
   Image image;
-  image.width = in.spec().width;
-  image.height = in.spec().height;
-  image.channels = in.spec().nchannels;
-  image.format = in.format_name();
+  image.width = windowsDiffer(spec) ? spec.full_width : spec.width;
+  image.height = windowsDiffer(spec) ? spec.full_height : spec.height;
+  image.channels = spec.nchannels;
+  image.format = o.in->format_name();
+  image.notes = o.notes;
   return image;
 }
 
@@ -84,6 +241,10 @@ Error readFailure(const std::string& path, OIIO::ImageInput& in) {
   std::string why = oneLine(in.geterror());
   return Error("cannot read probe '" + path + "': " + (why.empty() ? "read failed" : why));
 }
+
+// A read counts only when the decoder reported nothing: some report missing data (a cut TIFF) as an error
+// message beside a read that "succeeded".
+bool readClean(bool read, OIIO::ImageInput& in) { return read && !in.has_error(); }
 
 // A scanline file whose samples are float already (.hdr, float EXR) is read straight into the caller's
 // buffer: read_image and read_scanlines would decode it into a buffer of their own and copy that, which at 8K
@@ -106,20 +267,39 @@ Image readImage(const std::string& path) {
   OpenImage file = openImage(path, true);
   auto& in = file.in;
   const OIIO::ImageSpec& spec = in->spec();
-  Image image = description(*in);
-  image.pixels = keptArray<float>(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
+  Image image = description(file);
+  const std::size_t C = static_cast<std::size_t>(spec.nchannels);
+  image.pixels = keptArray<float>(static_cast<std::size_t>(image.width) * image.height * C);
   // Subimage 0, MIP level 0 (the finest), every channel, as float (every sample written).
-  const bool read = nativeFloat(spec)
-                        ? readFloatRows(*in, 0, spec.height, image.pixels.get())
-                        : in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.get());
-  if (!read) throw readFailure(path, *in);
+  if (!windowsDiffer(spec)) {
+    const bool read = nativeFloat(spec) ? readFloatRows(*in, 0, spec.height, image.pixels.get())
+                                        : in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT,
+                                                         image.pixels.get());
+    if (!readClean(read, *in)) throw readFailure(path, *in);
+  } else {  // the data window read, then placed in the display window (zeros elsewhere)
+    std::vector<float> data(static_cast<std::size_t>(spec.width) * spec.height * C);
+    if (!readClean(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, data.data()), *in))
+      throw readFailure(path, *in);
+    std::fill_n(image.pixels.get(), static_cast<std::size_t>(image.width) * image.height * C, 0.0f);
+    for (int y = std::max(spec.y, spec.full_y);
+         y < std::min(spec.y + spec.height, spec.full_y + image.height); ++y)
+      for (int x = std::max(spec.x, spec.full_x);
+           x < std::min(spec.x + spec.width, spec.full_x + image.width); ++x)
+        std::copy_n(
+            &data[(static_cast<std::size_t>(y - spec.y) * spec.width + (x - spec.x)) * C], C,
+            &image.pixels
+                 .get()[(static_cast<std::size_t>(y - spec.full_y) * image.width + (x - spec.full_x)) * C]);
+  }
+  decode(file.transfer, image.pixels.get(), static_cast<std::size_t>(image.width) * image.height,
+         spec.nchannels);
   return image;
 }
 
 Image describeImage(const std::string& path, bool* canReadInBands) {
-  auto in = openImage(path).in;
-  if (canReadInBands) *canReadInBands = in->spec().tile_width == 0 && !in->spec().deep;
-  return description(*in);
+  const OpenImage file = openImage(path);
+  const OIIO::ImageSpec& spec = file.in->spec();
+  if (canReadInBands) *canReadInBands = spec.tile_width == 0 && !spec.deep && !windowsDiffer(spec);
+  return description(file);
 }
 
 Image readImageBands(const std::string& path, int bandRows,
@@ -127,9 +307,10 @@ Image readImageBands(const std::string& path, int bandRows,
   OpenImage file = openImage(path, true);
   auto& in = file.in;
   const OIIO::ImageSpec& spec = in->spec();
-  if (spec.tile_width != 0 || spec.deep)
-    throw Error("cannot read probe '" + path + "' band by band: it is tiled or deep (read it whole)");
-  Image info = description(*in);
+  if (spec.tile_width != 0 || spec.deep || windowsDiffer(spec))
+    throw Error("cannot read probe '" + path +
+                "' band by band: it is tiled, deep or cropped to a data window (read it whole)");
+  Image info = description(file);
   const int W = info.width, H = info.height, channels = info.channels;
   const int rows = std::clamp(bandRows, 1, H), bands = (H + rows - 1) / rows;
   const bool native = nativeFloat(spec);
@@ -142,7 +323,8 @@ Image readImageBands(const std::string& path, int bandRows,
     const bool read = native ? readFloatRows(*in, y0, y1, buffers[b % 2].data())
                              : in->read_scanlines(0, 0, spec.y + y0, spec.y + y1, 0, 0, channels,
                                                   OIIO::TypeDesc::FLOAT, buffers[b % 2].data());
-    if (!read) throw readFailure(path, *in);
+    if (!readClean(read, *in)) throw readFailure(path, *in);
+    decode(file.transfer, buffers[b % 2].data(), static_cast<std::size_t>(y1 - y0) * W, channels);
   };
   std::future<void> next = std::async(std::launch::async, read, 0);
   for (int b = 0; b < bands; ++b) {

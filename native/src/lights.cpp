@@ -93,16 +93,25 @@ std::vector<Light> lightsFromSums(const Probe& probe, const std::vector<Rect>& r
     light.energyShare = s.energy / totalEnergy;
     lights.push_back(light);
   }
-  for (const Deficit& d : deficits)
+  // Each deficit is taken from the lights nearest it, as much from each as it has (a light ends at 0, never
+  // below), so the lights carry the probe's integral exactly whenever that is positive; only the part of a
+  // channel whose whole integral is not positive is left out (its light cannot be a lamp), and said by the
+  // bake (negativeChannels).
+  std::vector<std::size_t> order(lights.size());
+  for (const Deficit& d : deficits) {
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return dot(lights[a].direction, d.direction) > dot(lights[b].direction, d.direction);
+    });
     for (int k = 0; k < 3; ++k) {
-      if (!(d.rgb[k] < 0)) continue;
-      Light* nearest = nullptr;
-      for (Light& l : lights)
-        if (l.rgb[k] + d.rgb[k] >= 0 &&
-            (!nearest || dot(l.direction, d.direction) > dot(nearest->direction, d.direction)))
-          nearest = &l;
-      if (nearest) nearest->rgb[k] += d.rgb[k];  // else (no light has that much) it is not rendered
+      double owed = -d.rgb[k];
+      for (std::size_t i = 0; i < order.size() && owed > 0; ++i) {
+        double& c = lights[order[i]].rgb[k];
+        const double taken = std::min(c, owed);
+        if (taken > 0) c -= taken, owed -= taken;
+      }
     }
+  }
   return lights;
 }
 

@@ -92,7 +92,9 @@ Probe::Probe(Image image, ProjectionChoice projection, const std::string& name)
     : owned_(std::make_shared<const Image>(std::move(image))),
       view_((checkShape(owned_->view(), "'" + name + "'"), owned_->view())),
       projection_(resolveProjection(projection, view_.width, view_.height, "'" + name + "'", report_.notes),
-                  view_.width, view_.height) {}
+                  view_.width, view_.height) {
+  report_.notes.insert(report_.notes.end(), owned_->notes.begin(), owned_->notes.end());
+}
 
 namespace {
 // One row's counts (Probe::countRows adds them up).

@@ -32,6 +32,7 @@ void writeImage(const fs::path& path, int W, int H, int channels, const std::vec
   ASSERT_TRUE(out) << path;
   OIIO::ImageSpec spec(W, H, channels, OIIO::TypeDesc::FLOAT);
   if (tiled) spec.tile_width = spec.tile_height = 16;
+  if (channels == 2) spec.channelnames = {"Y", "A"};  // grey and alpha (a 2-channel R, G image is refused)
   ASSERT_TRUE(out->open(path.string(), spec));
   ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
   out->close();

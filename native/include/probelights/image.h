@@ -39,6 +39,9 @@ struct Image {
   int height = 0;
   int channels = 0;
   std::string format;  // OpenImageIO's name of the file format, e.g. "openexr"
+  // How the file was read, one line each, for the user (the probe's report): an 8-bit image's sRGB values
+  // decoded to linear light, a data window smaller than the display window, channels ignored.
+  std::vector<std::string> notes;
 
   ImageView view() const { return {pixels.get(), width, height, channels}; }
 };

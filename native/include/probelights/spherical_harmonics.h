@@ -27,6 +27,8 @@
 namespace probelights {
 
 inline int shCount(int bands) { return bands * bands; }
+// The most bands a projection takes (spherical_harmonics.cpp says why).
+inline constexpr int kMaxShBands = 64;
 inline int shIndex(int l, int m) { return l * (l + 1) + m; }
 
 // All bands^2 basis functions at unit direction d.
