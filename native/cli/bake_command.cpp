@@ -14,6 +14,7 @@
 #include "probelights/grid_load.h"
 #include "probelights/preview.h"
 #include "probelights/stopwatch.h"
+#include "write_whole.h"
 
 namespace probelights::cli {
 
@@ -35,11 +36,16 @@ BakeArgs parseBakeArgs(const std::vector<std::string>& argv) {
          if (v != "on" && v != "off") throw UsageError("--horizon takes on or off, got '" + v + "'");
          b.splitAtHorizon = v == "on";
        }},
-      {{"-o", "--output"}, [&](const std::string& v) { a.output = v; }},
-      {{"--preview"}, [&](const std::string& v) { a.preview = v; }},
-      {{"--out-dir"}, [&](const std::string& v) { a.outDir = v; }},
+      {{"-o", "--output"}, [&](const std::string& v) { a.output = nonEmpty("-o", v); }},
+      {{"--preview"}, [&](const std::string& v) { a.preview = nonEmpty("--preview", v); }},
+      {{"--out-dir"}, [&](const std::string& v) { a.outDir = nonEmpty("--out-dir", v); }},
       flag({"--previews"}, [&] { a.previews = true; }),
-      {{"--max-error"}, [&](const std::string& v) { acc.maxError = parseTolerance("--max-error", v); }},
+      {{"--max-error"},
+       [&](const std::string& v) {
+         acc.maxError = parseTolerance("--max-error", v);
+         if (!(acc.maxError > 0 && acc.maxError < 1))
+           throw UsageError("--max-error takes an error between 0 and 100% (e.g. 1%), got '" + v + "'");
+       }},
       {{"--effects"}, [&](const std::string& v) { acc.effects = parseEffects(v); }},
       {{"--sun-angles"}, [&](const std::string& v) { acc.sunAngles = parseSunAngles(v); }},
       {{"--sun-profile"}, [&](const std::string& v) { acc.sunProfile = parseSunProfile(v); }},
@@ -56,6 +62,7 @@ BakeArgs parseBakeArgs(const std::vector<std::string>& argv) {
     if (a.previews)
       throw UsageError("--previews goes with --out-dir (a library bake); one probe takes --preview FILE");
     a.probe = oneProbe(probes, "bake");
+    refuseOverwritingProbe(a.probe, {a.output, a.preview});
   } else {
     if (!a.output.empty() || !a.preview.empty())
       throw UsageError("with --out-dir each probe's JSON (and --previews) goes there: drop -o / --preview");
@@ -88,9 +95,11 @@ void printSummary(const BakeArgs& a, const Probe& probe, const EvaluatedBake& ev
   double worst = 0;
   for (int k = 0; k < 3; ++k)
     if (r.totalRgb[k] > 0) worst = std::max(worst, std::abs(sum[k] - r.totalRgb[k]) / r.totalRgb[k]);
+  const bool allPositive = r.totalRgb[0] > 0 && r.totalRgb[1] > 0 && r.totalRgb[2] > 0;
   std::printf(
-      "\nenergy     probe integral (%.6g, %.6g, %.6g), lights sum (%.6g, %.6g, %.6g), max rel. diff %.1e\n",
-      r.totalRgb[0], r.totalRgb[1], r.totalRgb[2], sum[0], sum[1], sum[2], worst);
+      "\nenergy     probe integral (%.6g, %.6g, %.6g), lights sum (%.6g, %.6g, %.6g), max rel. diff %.1e%s\n",
+      r.totalRgb[0], r.totalRgb[1], r.totalRgb[2], sum[0], sum[1], sum[2], worst,
+      allPositive ? "" : " (of the channels above 0; see the note)");
   if (ev.evaluated) {
     std::printf("error      ");
     if (ev.effects & kDiffuse) std::printf("diffuse %.2f%%  ", 100 * ev.errors.diffuse);
@@ -130,7 +139,8 @@ int bakeCommand(const std::vector<std::string>& argv) {
     writeJson(bakeToJson({a.probe, probe, a.bake, done, loadMs}), a.output, 2);
     if (a.output == "-") a.quiet = true;
   }
-  if (!a.preview.empty()) writePreview(probe, done.bake, a.preview);
+  if (!a.preview.empty())
+    writeImageWhole(a.preview, [&](const std::string& tmp) { writePreview(probe, done.bake, tmp); });
   if (!a.quiet) printSummary(a, probe, done, loadMs);
   return 0;
 }

@@ -1,13 +1,18 @@
 // probelights bake PROBE... --out-dir DIR: a whole HDRI library in one process. The next probe loads while
 // the current one bakes (batch.h); each result is written whole or not at all (a temporary file renamed); a
 // probe that fails is reported on one line and the rest go on; on a terminal a progress line says how far it
-// is.
+// is. Nothing is overwritten that a bake did not write (outputNames), and a disk that fills or Ctrl-C stops
+// the run with a summary of what was done.
+#include <OpenImageIO/imageio.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <map>
+#include <set>
 
 #include "bake_args.h"
 #include "json_output.h"
@@ -15,6 +20,7 @@
 #include "probelights/batch.h"
 #include "probelights/preview.h"
 #include "probelights/stopwatch.h"
+#include "write_whole.h"
 
 namespace probelights::cli {
 
@@ -22,48 +28,107 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Writes `text` to `path` through a temporary file in the same folder, so a reader never sees half of it.
-void writeWhole(const fs::path& path, const std::string& text) {
-  const fs::path tmp = path.string() + ".part";
-  {
-    std::ofstream out(tmp);
-    if (!(out << text) || !(out.flush())) {
-      std::error_code ec;
-      fs::remove(tmp, ec);
-      throw Error("cannot write '" + path.string() + "'");
-    }
-  }
+const char* kGenerator = "probelights " PROBELIGHTS_VERSION;
+
+// Whether the JSON file at `path` is one a bake wrote (a result or a summary), which a new bake may replace.
+// Results of versions before the "generator" key are known by their keys.
+bool ourJson(const fs::path& path) {
   std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) throw Error("cannot write '" + path.string() + "': " + ec.message());
+  if (fs::file_size(path, ec) > (64u << 20) || ec) return false;
+  std::ifstream in(path, std::ios::binary);
+  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  if (!j.is_object()) return false;
+  if (auto g = j.find("generator"); g != j.end())
+    return g->is_string() && g->get<std::string>().rfind("probelights", 0) == 0;
+  return j.contains("source") && j.contains("lights") && j.contains("total_rgb");
 }
 
-// The output folder, made if missing and checked writable before any work (nothing is left behind).
-void prepareOutDir(const fs::path& dir) {
+// Whether the image at `path` is a preview a bake wrote (its Software tag, preview.h).
+bool ourPreview(const fs::path& path) {
+  auto in = OIIO::ImageInput::open(path.string());
+  return in && in->spec().get_string_attribute("Software") == kPreviewSoftware;
+}
+
+// The output folder, made if missing, and checked before any work by writing to it for real (synced: a
+// buffered byte passes on a full disk) and by its free space; a summary.json of somebody else's is refused.
+void prepareOutDir(const fs::path& dir, const std::vector<std::string>& inputs) {
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec || !fs::is_directory(dir))
     throw Error("cannot write to output directory '" + dir.string() +
                 "': " + (ec ? ec.message() : std::string("not a directory")));
-  const fs::path probe = dir / ".probelights-write-test";
-  {
-    std::ofstream out(probe);
-    if (!(out << "x")) throw Error("cannot write to output directory '" + dir.string() + "'");
+  try {
+    writeWhole((dir / ".probelights-write-test").string(), std::string(4096, ' '));
+  } catch (const Error& e) {
+    throw Error("cannot write to output directory '" + dir.string() +
+                "': " + std::string(e.what()).substr(std::string(e.what()).rfind(": ") + 2));
   }
-  fs::remove(probe, ec);
+  fs::remove(dir / ".probelights-write-test", ec);
+  struct statvfs space {};
+  if (statvfs(dir.c_str(), &space) == 0 && space.f_bavail * space.f_frsize < (1u << 20))
+    throw Error("cannot write to output directory '" + dir.string() + "': less than 1 MB free");
+  const fs::path summary = dir / "summary.json";
+  for (const auto& input : inputs)
+    if (sameFile(input, summary.string()))
+      throw UsageError("'" + summary.string() + "' is one of the probes: choose another --out-dir");
+  if (fs::exists(summary, ec) && !ourJson(summary))
+    throw UsageError("'" + summary.string() +
+                     "' exists and was not written by probelights: choose another --out-dir or move it");
 }
 
-// One output name per probe: its file name without the extension, made unique with _2, _3, ...
-std::vector<std::string> outputNames(const std::vector<std::string>& paths) {
-  std::map<std::string, int> used;
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+// One output name per probe: its file name without the extension, or with _2, _3, ... the first that no
+// other probe of this run takes (compared without case: case-insensitive file systems) and whose files in
+// the folder are missing or a bake's own (ourJson, ourPreview) and none of the probes. Nothing else in the
+// folder is overwritten.
+// A name that is UTF-8 as it is; another (a file name's bytes) with '_' for each byte outside ASCII, so that
+// the summary (JSON: UTF-8) names the file it wrote.
+std::string textName(std::string name) {
+  const nlohmann::json j = name;
+  try {
+    (void)j.dump();
+    return name;
+  } catch (const nlohmann::json::exception&) {
+    for (char& c : name)
+      if (static_cast<unsigned char>(c) >= 0x80) c = '_';
+    return name;
+  }
+}
+
+std::vector<std::string> outputNames(const std::vector<std::string>& paths, const fs::path& dir,
+                                     bool previews) {
+  std::set<std::string> taken{"summary"};
+  auto free = [&](const fs::path& file, bool image) {
+    std::error_code ec;
+    if (!fs::exists(fs::symlink_status(file, ec)) && !fs::exists(file, ec)) return true;
+    for (const auto& p : paths)
+      if (sameFile(p, file.string())) return false;
+    return image ? ourPreview(file) : ourJson(file);
+  };
   std::vector<std::string> names;
   for (const auto& p : paths) {
-    std::string stem = fs::path(p).stem().string();
-    if (stem.empty()) stem = "probe";
-    const int n = ++used[stem];
-    names.push_back(n == 1 ? stem : stem + "_" + std::to_string(n));
+    std::string stem = textName(fs::path(p).stem().string());
+    if (stem.empty() || stem[0] == '.') stem = "probe" + stem;
+    std::string name = stem;
+    for (int n = 2; taken.count(lower(name)) || !free(dir / (name + ".json"), false) ||
+                    (previews && !free(dir / (name + ".png"), true));
+         ++n)
+      name = stem + "_" + std::to_string(n);
+    taken.insert(lower(name));
+    names.push_back(name);
   }
   return names;
+}
+
+// A failed write that no later probe's write would escape: stop the run.
+bool diskFailure(const std::string& why) {
+  for (int e : {ENOSPC, EDQUOT, EROFS, EIO})
+    if (why.find(std::strerror(e)) != std::string::npos) return true;
+  return false;
 }
 
 }  // namespace
@@ -72,8 +137,13 @@ int bakeLibrary(const BakeArgs& a) {
   const std::vector<std::string> paths = expandProbePaths(a.probes);
   if (paths.empty()) throw UsageError("no probes found in the inputs given");
   const fs::path dir(a.outDir);
-  prepareOutDir(dir);
-  const std::vector<std::string> names = outputNames(paths);
+  prepareOutDir(dir, paths);
+  const std::vector<std::string> names = outputNames(paths, dir, a.previews);
+  // Ctrl-C: the probe under way finishes, the summary says what was done; a second Ctrl-C ends at once.
+  // Either way no half-written file is left.
+  static volatile bool interrupted = false;
+  removeTemporariesOnSignal(&interrupted);
+  bool stopped = false;
   const bool terminal = isatty(STDERR_FILENO) && !a.quiet;
   Stopwatch wall;
   double loadMs = 0, bakeMs = 0;
@@ -81,7 +151,7 @@ int bakeLibrary(const BakeArgs& a) {
   nlohmann::json entries = nlohmann::json::array();
   std::size_t index = 0;
   const bool gridOnly = bakesFromGridAlone(a);
-  auto bakeOne = [&](LoadedProbe& item) {
+  auto bakeOne = [&](LoadedProbe& item) -> bool {
     const std::string& name = names[index++];
     nlohmann::json entry{{"probe", item.path}, {"load_ms", item.loadMs}};
     loadMs += item.loadMs;
@@ -94,9 +164,13 @@ int bakeLibrary(const BakeArgs& a) {
                        : bakeEvaluated(*item.probe, a.bake, a.accuracy);
         const double ms = clock.ms();
         bakeMs += ms;
-        writeWhole(dir / (name + ".json"),
-                   bakeToJson({item.path, *item.probe, a.bake, result, item.loadMs}).dump(2) + "\n");
-        if (a.previews) writePreview(*item.probe, result.bake, (dir / (name + ".png")).string());
+        if (a.previews) {
+          writeImageWhole((dir / (name + ".png")).string(),
+                          [&](const std::string& tmp) { writePreview(*item.probe, result.bake, tmp); });
+          entry["preview"] = name + ".png";
+        }
+        writeWhole((dir / (name + ".json")).string(),
+                   dumpJson(bakeToJson({item.path, *item.probe, a.bake, result, item.loadMs}), 2));
         entry["output"] = name + ".json";
         entry["lights"] = result.bake.lights.size();
         entry["bake_ms"] = ms;
@@ -109,34 +183,42 @@ int bakeLibrary(const BakeArgs& a) {
     if (!error.empty()) {
       ++failed;
       entry["error"] = error;
-      if (terminal) std::fputs("\r\033[K", stderr);
-      std::fprintf(stderr, "probelights: error: %s\n", error.c_str());
+      if (terminal) std::fputs("\r\033[K", messages());
+      std::fprintf(messages(), "probelights: error: %s\n", error.c_str());
+      if (diskFailure(error)) stopped = true;
     }
     entries.push_back(entry);
     if (terminal) {
       const double rate = done / (wall.ms() / 1000.0);
-      std::fprintf(stderr, "\r\033[K%d/%zu probes, %.1f per second, %.0f s left", done, paths.size(), rate,
-                   (paths.size() - done) / rate);
-      std::fflush(stderr);
+      std::fprintf(messages(), "\r\033[K%d/%zu probes, %.1f per second, %.0f s left", done, paths.size(),
+                   rate, (paths.size() - done) / rate);
+      std::fflush(messages());
     }
+    return !stopped && !interrupted;
   };
   forEachProbe(paths, a.probeOptions, bakeOne, gridOnly ? &a.bake : nullptr);
-  if (terminal) std::fputs("\r\033[K", stderr);
+  if (terminal) std::fputs("\r\033[K", messages());
   const double seconds = wall.ms() / 1000.0;
-  writeWhole(dir / "summary.json", nlohmann::json{{"probes", paths.size()},
-                                                  {"baked", done - failed},
-                                                  {"failed", failed},
-                                                  {"seconds", seconds},
-                                                  {"load_ms", loadMs},
-                                                  {"bake_ms", bakeMs},
-                                                  {"results", entries}}
-                                           .dump(2) +
-                                       "\n");
+  const int skipped = static_cast<int>(paths.size()) - done;
+  const char* why = interrupted ? "interrupted" : "stopped: the output directory cannot be written";
+  nlohmann::json summary{{"generator", kGenerator}, {"probes", paths.size()}, {"baked", done - failed},
+                         {"failed", failed},        {"not_started", skipped}, {"seconds", seconds},
+                         {"load_ms", loadMs},       {"bake_ms", bakeMs},      {"results", entries}};
+  if (skipped) summary["stopped"] = why;
+  try {
+    writeWhole((dir / "summary.json").string(), dumpJson(summary, 2));
+  } catch (const Error& e) {
+    std::fprintf(messages(), "probelights: error: %s\n", e.what());
+    return 3;
+  }
   if (!a.quiet)
-    std::printf("baked %d of %zu probes into %s in %.2f s (loading %.2f s and baking %.2f s, overlapped)%s\n",
-                done - failed, paths.size(), dir.string().c_str(), seconds, loadMs / 1000, bakeMs / 1000,
-                failed ? (", " + std::to_string(failed) + " failed").c_str() : "");
-  return failed ? 3 : 0;
+    std::printf(
+        "baked %d of %zu probes into %s in %.2f s (loading %.2f s and baking %.2f s, overlapped)%s%s\n",
+        done - failed, paths.size(), dir.string().c_str(), seconds, loadMs / 1000, bakeMs / 1000,
+        failed ? (", " + std::to_string(failed) + " failed").c_str() : "",
+        skipped ? (", " + std::to_string(skipped) + " not started (" + why + ")").c_str() : "");
+  if (interrupted) return 130;
+  return failed || skipped ? 3 : 0;
 }
 
 }  // namespace probelights::cli

@@ -8,6 +8,7 @@
 
 #include "commands.h"
 #include "options.h"
+#include "write_whole.h"
 
 namespace {
 
@@ -66,13 +67,14 @@ options:
 
 int main(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
+  quietLibraries();
   try {
     if (!args.empty() && args[0] == "--version") {
       std::puts("probelights " PROBELIGHTS_VERSION);
       return 0;
     }
     if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
-      std::fputs(kUsage, args.empty() ? stderr : stdout);
+      std::fputs(kUsage, args.empty() ? messages() : stdout);
       return args.empty() ? 2 : 0;
     }
     const std::map<std::string, int (*)(const std::vector<std::string>&)> commands{
@@ -81,18 +83,24 @@ int main(int argc, char** argv) {
       std::vector<std::string> rest(args.begin() + 1, args.end());
       for (const auto& s : rest)
         if (s == "--help" || s == "-h") return std::fputs(kUsage, stdout), 0;
-      return command->second(rest);
+      const int code = command->second(rest);
+      writeStdout("");  // what is still buffered: a full disk or closed pipe behind stdout is an error
+      return code;
     }
     throw UsageError("unknown command '" + args[0] +
                      "': use bake, sh, sample or tradeoff (see probelights --help)");
   } catch (const Error& e) {
-    std::fprintf(stderr, "probelights: error: %s\n", e.what());
+    std::fprintf(messages(), "probelights: error: %s\n", e.what());
     return 2;
   } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "probelights: error: out of memory (try a coarser --resolution)\n");
+    std::fprintf(messages(), "probelights: error: out of memory\n");
+    return 2;
+  } catch (const std::length_error&) {
+    std::fprintf(messages(),
+                 "probelights: error: out of memory (the request is larger than memory can be)\n");
     return 2;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "probelights: internal error: %s\n", e.what());
+    std::fprintf(messages(), "probelights: internal error: %s\n", e.what());
     return 1;
   }
 }

@@ -1,11 +1,30 @@
 #include "options.h"
 
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 
+#include "write_whole.h"
+
 namespace probelights::cli {
+
+namespace {
+std::FILE* userStderr = nullptr;
+}
+
+std::FILE* messages() { return userStderr ? userStderr : stderr; }
+
+void quietLibraries() {
+  const int fd = dup(STDERR_FILENO);
+  std::FILE* user = fd >= 0 ? fdopen(fd, "w") : nullptr;
+  std::FILE* nowhere = std::fopen("/dev/null", "w");
+  if (!user || !nowhere) return;  // keep things as they are
+  std::setvbuf(user, nullptr, _IONBF, 0);
+  userStderr = user;
+  stderr = nowhere;  // glibc's stderr is a variable: libpng's fprintf(stderr, ...) reads it at each call
+}
 
 std::vector<std::string> parseOptions(const std::vector<std::string>& argv,
                                       const std::vector<Option>& table) {
@@ -52,6 +71,21 @@ void addProbeOptions(std::vector<Option>& table, ProbeOptions& options) {
       {{"--nonfinite"}, [&](const std::string& v) { options.nonFinite = parseNonFinitePolicy(v); }});
 }
 
+std::string nonEmpty(const std::string& flag, const std::string& value) {
+  if (value.empty()) throw UsageError(flag + " needs a name, got an empty one");
+  return value;
+}
+
+void refuseOverwritingProbe(const std::string& probe, const std::vector<std::string>& outputs) {
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    if (outputs[i].empty() || outputs[i] == "-") continue;
+    if (outputs[i] == probe || sameFile(outputs[i], probe))
+      throw UsageError("'" + outputs[i] + "' is the probe itself: write the output elsewhere");
+    for (std::size_t k = 0; k < i; ++k)
+      if (outputs[k] == outputs[i]) throw UsageError("two outputs name the same file '" + outputs[i] + "'");
+  }
+}
+
 double parseReal(const std::string& flag, const std::string& text) {
   try {
     std::size_t used = 0;
@@ -86,15 +120,17 @@ std::vector<std::string> splitList(const std::string& text) {
   return items;
 }
 
+std::string dumpJson(const nlohmann::json& j, int indent) {
+  return j.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+}
+
 void writeJson(const nlohmann::json& j, const std::string& output, int indent) {
   if (indent == -2) indent = output == "-" ? -1 : 1;
-  std::string text = j.dump(indent) + "\n";
-  if (output == "-") {
-    std::fwrite(text.data(), 1, text.size(), stdout);
-    return;
-  }
-  std::ofstream out(output);
-  if (!(out << text)) throw Error("cannot write '" + output + "'");
+  const std::string text = dumpJson(j, indent);
+  if (output == "-")
+    writeStdout(text);
+  else
+    writeWhole(output, text);
 }
 
 }  // namespace probelights::cli

@@ -1,6 +1,7 @@
 // What every CLI command shares: a declarative option table and its parser, number parsing, JSON output.
 #pragma once
 
+#include <cstdio>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -15,6 +16,13 @@ namespace probelights::cli {
 struct UsageError : Error {
   using Error::Error;
 };
+
+// Where the CLI's own messages go: the standard error the user sees. Decoders under OpenImageIO (libpng,
+// libtiff) print complaints of their own on stderr beside the error OpenImageIO reports ("libpng error:
+// ..."); quietLibraries() sends the C library's stderr nowhere, so a bad file gives the user one line, the
+// CLI's.
+std::FILE* messages();
+void quietLibraries();
 
 // One option of a command: its spellings and what it does with its value (a flag takes none).
 struct Option {
@@ -37,10 +45,20 @@ std::string oneProbe(const std::vector<std::string>& positional, const std::stri
 // The options every command reading a probe has: --projection and --nonfinite.
 void addProbeOptions(std::vector<Option>& table, ProbeOptions& options);
 
+// An option's value that must not be empty (a file or folder name).
+std::string nonEmpty(const std::string& flag, const std::string& value);
+
+// Refuses outputs that name the probe being read (or each other): a command never writes over its input.
+void refuseOverwritingProbe(const std::string& probe, const std::vector<std::string>& outputs);
+
 double parseReal(const std::string& flag, const std::string& text);
 int parseCount(const std::string& flag, const std::string& text);
 double parseTolerance(const std::string& flag, const std::string& text);  // "1%" or "0.01"
 std::vector<std::string> splitList(const std::string& text);              // "a,b,c"
+
+// JSON as text: indented by `indent` (-1: compact), ending in a newline; a string that is not UTF-8 (a file
+// name's bytes) has U+FFFD in place of its bad bytes.
+std::string dumpJson(const nlohmann::json& j, int indent);
 
 // JSON to a file, or standard output for "-"; indented by `indent`, by default compact on standard output and
 // by 1 in a file.

@@ -29,7 +29,7 @@ ShArgs parseShArgs(const std::vector<std::string>& argv, bool sampling) {
   ShArgs a;
   std::vector<Option> table{
       {{"--bands"}, [&](const std::string& v) { a.bands = parseCount("--bands", v); }},
-      {{"-o", "--output"}, [&](const std::string& v) { a.output = v; }},
+      {{"-o", "--output"}, [&](const std::string& v) { a.output = nonEmpty("-o", v); }},
   };
   if (sampling) {
     table.push_back({{"--samples"}, [&](const std::string& v) { a.samples = parseCount("--samples", v); }});
@@ -44,6 +44,7 @@ ShArgs parseShArgs(const std::vector<std::string>& argv, bool sampling) {
   }
   addProbeOptions(table, a.probeOptions);
   a.probe = oneProbe(parseOptions(argv, table), sampling ? "sample" : "sh");
+  refuseOverwritingProbe(a.probe, {a.output});
   if (a.bands < 1) throw UsageError("--bands B (at least 1) is required");
   if (sampling && a.samples < 1) throw UsageError("--samples N (at least 1) is required");
   if (sampling && a.epsilon < 0) throw UsageError("--epsilon E (in [0, 0.5]) is required");

@@ -9,6 +9,7 @@
 #include "probelights/stopwatch.h"
 #include "probelights/tradeoff.h"
 #include "tradeoff_plot.h"
+#include "write_whole.h"
 
 namespace probelights::cli {
 
@@ -30,11 +31,12 @@ int tradeoffCommand(const std::vector<std::string>& argv) {
          for (const auto& m : splitList(v)) options.methods.push_back(parseMethod(m));
        }},
       flag({"--no-refit"}, [&] { options.refit = false; }),
-      {{"-o", "--output"}, [&](const std::string& v) { output = v; }},
-      {{"--plot"}, [&](const std::string& v) { plot = v; }},
+      {{"-o", "--output"}, [&](const std::string& v) { output = nonEmpty("-o", v); }},
+      {{"--plot"}, [&](const std::string& v) { plot = nonEmpty("--plot", v); }},
   };
   addProbeOptions(table, probeOptions);
   const std::string probePath = oneProbe(parseOptions(argv, table), "tradeoff");
+  refuseOverwritingProbe(probePath, {output, plot});
 
   Stopwatch truth;
   Probe probe = Probe::load(probePath, probeOptions);
@@ -58,8 +60,10 @@ int tradeoffCommand(const std::vector<std::string>& argv) {
   }
   if (!output.empty()) writeJson(tradeoffToJson({probePath, probe, effects, rows}), output);
   if (!plot.empty()) {
-    writeTradeoffPlot(rows, effects,
-                      std::filesystem::path(probePath).filename().string() + ": error vs bake time", plot);
+    writeImageWhole(plot, [&](const std::string& tmp) {
+      writeTradeoffPlot(rows, effects,
+                        std::filesystem::path(probePath).filename().string() + ": error vs bake time", tmp);
+    });
     std::printf("\nplot: %s\n", plot.c_str());
   }
   return 0;

@@ -43,6 +43,14 @@ BakeOptions bakeOptions(const std::string& method, int lights, const std::string
   return o;
 }
 
+// Text for Python: UTF-8, or as os.fsdecode has bytes that are not (a file name's; surrogates, so that the
+// str names the same file again) rather than a UnicodeDecodeError that loses the result.
+py::str fsText(const std::string& s) {
+  PyObject* o = PyUnicode_DecodeFSDefaultAndSize(s.data(), static_cast<Py_ssize_t>(s.size()));
+  if (!o) throw py::error_already_set();
+  return py::reinterpret_steal<py::str>(o);
+}
+
 // Writes the core's result layout (result_layout.h) into nested dicts; a table becomes a dict of numpy
 // arrays, one per column ((N,) for a scalar column, (N, width) otherwise), so its keys are the JSON rows'
 // keys.
@@ -59,7 +67,7 @@ class DictWriter : public ResultWriter {
   void number(const char* key, double v) override { stack_.back()[key] = v; }
   void integer(const char* key, long long v) override { stack_.back()[key] = v; }
   void boolean(const char* key, bool v) override { stack_.back()[key] = v; }
-  void text(const char* key, const std::string& v) override { stack_.back()[key] = v; }
+  void text(const char* key, const std::string& v) override { stack_.back()[key] = fsText(v); }
   void texts(const char* key, const std::vector<std::string>& v) override { stack_.back()[key] = v; }
   void numbers(const char* key, std::span<const double> v) override {
     stack_.back()[key] = py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
@@ -98,6 +106,16 @@ class DictWriter : public ResultWriter {
  private:
   std::vector<py::dict> stack_;
 };
+
+#if PROBELIGHTS_MODULE_IO
+// A path from Python as the file system has it: str (with os.fsdecode's surrogates for bytes that are not
+// UTF-8), bytes or os.PathLike, through os.fsencode; a NUL in it is refused (the file system would cut it).
+std::string fsPath(const py::handle& p) {
+  const std::string s = py::module_::import("os").attr("fsencode")(p).cast<std::string>();
+  if (s.find('\0') != std::string::npos) throw Error("a path holds a NUL character");
+  return s;
+}
+#endif
 
 py::dict toDict(const std::string& path, const Probe& probe, const BakeOptions& options,
                 const EvaluatedBake& bake, double loadMs = 0) {
@@ -138,6 +156,8 @@ AccuracyOptions accuracyOptions(const std::string& effects, bool evaluate, bool 
                                 const std::string& sunProfile, const std::string& cuts = "one") {
   AccuracyOptions a;
   a.effects = parseEffects(effects), a.evaluate = evaluate, a.refit = refit || moveDirections;
+  if (!(maxError >= 0 && maxError < 1))
+    throw Error("max_error takes an error between 0 and 1 (0: off), got " + std::to_string(maxError));
   a.maxError = maxError, a.evaluatorWidth = evaluatorWidth, a.moveDirections = moveDirections;
   a.sunAngles = parseSunAngles(sunAngles), a.sunProfile = parseSunProfile(sunProfile);
   a.cuts = parseCutChoice(cuts);
@@ -180,11 +200,12 @@ std::tuple<ProbeOptions, BakeOptions, AccuracyOptions> fileRequest(
                           sunProfile, cuts)};
 }
 
-py::dict bakeFile(const std::string& path, const std::string& projection, const std::string& method,
+py::dict bakeFile(const py::object& pathObject, const std::string& projection, const std::string& method,
                   int lights, const std::string& centroid, const std::string& resolution, bool horizon,
                   int bands, double epsilon, const std::string& effects, bool evaluate, bool refit,
                   bool moveDirections, double maxError, int evaluatorWidth, const std::string& sunAngles,
                   const std::string& sunProfile, const std::string& nonfinite, const std::string& cuts) {
+  const std::string path = fsPath(pathObject);
   const auto [probeOptions, options, accuracy] = fileRequest(
       projection, method, lights, centroid, resolution, horizon, bands, epsilon, effects, evaluate, refit,
       moveDirections, maxError, evaluatorWidth, sunAngles, sunProfile, nonfinite, cuts);
@@ -211,12 +232,19 @@ py::dict bakeFile(const std::string& path, const std::string& projection, const 
 
 // Many probes (files, directories, globs): a list with bake_file's dict per probe, or {"source": {"path"},
 // "error"} for one that failed (the others go on). The next probe loads while the current one bakes.
-py::list bakeFiles(const std::vector<std::string>& inputs, const std::string& projection,
-                   const std::string& method, int lights, const std::string& centroid,
-                   const std::string& resolution, bool horizon, int bands, double epsilon,
-                   const std::string& effects, bool evaluate, bool refit, bool moveDirections,
-                   double maxError, int evaluatorWidth, const std::string& sunAngles,
+py::list bakeFiles(const py::object& paths, const std::string& projection, const std::string& method,
+                   int lights, const std::string& centroid, const std::string& resolution, bool horizon,
+                   int bands, double epsilon, const std::string& effects, bool evaluate, bool refit,
+                   bool moveDirections, double maxError, int evaluatorWidth, const std::string& sunAngles,
                    const std::string& sunProfile, const std::string& nonfinite, const std::string& cuts) {
+  // A list (any iterable) of paths; one path alone is taken as a list of one.
+  std::vector<std::string> inputs;
+  const py::module_ os = py::module_::import("os");
+  if (py::isinstance<py::str>(paths) || py::isinstance<py::bytes>(paths) ||
+      py::isinstance(paths, os.attr("PathLike")))
+    inputs.push_back(fsPath(paths));
+  else
+    for (const py::handle p : paths) inputs.push_back(fsPath(p));
   if (inputs.empty()) throw Error("bake_files needs at least one path (a file, folder or glob)");
   const auto [probeOptions, options, accuracy] = fileRequest(
       projection, method, lights, centroid, resolution, horizon, bands, epsilon, effects, evaluate, refit,
@@ -241,10 +269,11 @@ py::list bakeFiles(const std::vector<std::string>& inputs, const std::string& pr
         out.append(toDict(item.path, *item.probe, options, *result, item.loadMs));
       } else {
         py::dict failed;
-        failed["source"] = py::dict(py::arg("path") = item.path);
-        failed["error"] = error;
+        failed["source"] = py::dict(py::arg("path") = fsText(item.path));
+        failed["error"] = fsText(error);
         out.append(failed);
       }
+      return true;
     };
     forEachProbe(expandProbePaths(inputs), probeOptions, bakeOne,
                  bakesOnGridAlone(options, accuracy) ? &options : nullptr);
@@ -342,6 +371,15 @@ py::tuple shSample(Pixels pixels, int bands, double epsilon, int samples, int de
 PYBIND11_MODULE(_probelights, m) {
   m.doc() = "probelights: turn an HDR light probe into N lights that carry exactly its energy";
   py::register_exception<Error>(m, "Error", PyExc_ValueError);
+  // Its message as fsText has it (a path in it need not be UTF-8): tried before register_exception's.
+  static py::handle errorType = m.attr("Error");
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const Error& e) {
+      PyErr_SetObject(errorType.ptr(), fsText(e.what()).ptr());
+    }
+  });
   m.def(
       "tradeoff", &tradeoffRows, py::arg("pixels"), py::kw_only(), py::arg("projection") = "latlong",
       py::arg("effects") = "diffuse,shadow", py::arg("counts") = std::vector<int>{4, 8, 16, 32, 64, 128, 256},

@@ -8,6 +8,7 @@
 #include <future>
 #include <set>
 
+#include "probelights/error.h"
 #include "probelights/grid_load.h"
 #include "probelights/one_thread.h"
 #include "probelights/stopwatch.h"
@@ -60,8 +61,12 @@ std::vector<std::string> expandProbePaths(const std::vector<std::string>& inputs
     std::error_code ec;
     if (fs::is_directory(input, ec)) {
       std::vector<std::string> files;
-      for (const auto& entry : fs::directory_iterator(input, ec))
-        if (entry.is_regular_file(ec) && isImageFile(entry.path())) files.push_back(entry.path().string());
+      fs::directory_iterator it(input, ec);
+      if (ec) throw Error("cannot read folder '" + input + "': " + ec.message());
+      for (; it != fs::directory_iterator(); it.increment(ec)) {
+        if (ec) throw Error("cannot read folder '" + input + "': " + ec.message());
+        if (it->is_regular_file(ec) && isImageFile(it->path())) files.push_back(it->path().string());
+      }
       std::sort(files.begin(), files.end());
       for (const auto& f : files) add(f);
     } else if (!fs::exists(input, ec) && input.find_first_of("*?[") != std::string::npos) {
@@ -79,7 +84,7 @@ std::vector<std::string> expandProbePaths(const std::vector<std::string>& inputs
 }
 
 void forEachProbe(const std::vector<std::string>& paths, const ProbeOptions& options,
-                  const std::function<void(LoadedProbe&)>& consume, const BakeOptions* grid) {
+                  const std::function<bool(LoadedProbe&)>& consume, const BakeOptions* grid) {
   // Loads run ahead of the bakes on their own threads: one probe ahead, or two while the probes are small
   // (a serial decoder such as Radiance's RLE keeps one core busy per file, and a 1K bake is shorter than its
   // load: 100 1K .hdr probes, 64 lights, took 1.65 s with one load ahead, 1.33 s with two, as with three: all
@@ -94,7 +99,7 @@ void forEachProbe(const std::vector<std::string>& paths, const ProbeOptions& opt
     ahead.pop_front();
     const std::size_t depth = current.probe && current.probe->width() <= kSmallWidth ? 2 : 1;
     while (ahead.size() < depth && next < paths.size()) launch();
-    consume(current);
+    if (!consume(current)) break;  // the loads under way finish as `ahead` is destroyed
   }
 }
 

@@ -52,7 +52,9 @@ void writePreview(const Probe& probe, const BakeResult& result, const std::strin
     if (double Y = luminance(c); Y > 0) logSum += std::log(Y), ++n;
   const double key = n > 0 ? 0.18 / std::exp(logSum / n) : 1.0;
 
-  OIIO::ImageBuf buf(OIIO::ImageSpec(pw, ph, 3, OIIO::TypeDesc::FLOAT));
+  OIIO::ImageSpec spec(pw, ph, 3, OIIO::TypeDesc::FLOAT);
+  spec.attribute("Software", kPreviewSoftware);  // how a later library bake knows its own preview
+  OIIO::ImageBuf buf(spec);
   for (int j = 0; j < ph; ++j)
     for (int i = 0; i < pw; ++i) {
       const Rgb& c = small[static_cast<std::size_t>(j) * pw + i];

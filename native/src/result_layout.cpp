@@ -50,6 +50,8 @@ void writeBake(ResultWriter& w, const BakeReport& report) {
   const Probe& probe = report.probe;
   const BakeOptions& o = report.options;
   const BakeResult& r = report.bake.bake;
+  // Who wrote it: how a library bake knows its own earlier results, which alone it may replace.
+  w.text("generator", "probelights " PROBELIGHTS_VERSION);
   writeSource(w, report.path, probe);
   w.text("method", toString(report.bake.cut));  // with both cuts: the one kept
   if (o.method == Method::SphericalHarmonics) {

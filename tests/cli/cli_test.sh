@@ -84,7 +84,7 @@ check "bake --method sh" "'$bin' bake '$probe' --method sh --lights 8 --bands 6 
 
 # What accuracy costs: evaluation, refit, auto count, the tradeoff report and its plot.
 expect_error "bad effect" "unknown effect" bake "$probe" --evaluate --effects caustics
-expect_error "bad tolerance" "tolerance" bake "$probe" --max-error 200%
+expect_error "bad tolerance" "between 0 and 100%" bake "$probe" --max-error 200%
 check "bake --refit reports errors and the energy shift" "'$bin' bake '$probe' --lights 16 --refit --effects diffuse,shadow >'$tmp/refit.txt' && grep -q 'error      diffuse' '$tmp/refit.txt' && grep -q 'energy shift' '$tmp/refit.txt'"
 check "bake --refit-directions" "'$bin' bake '$probe' --lights 16 --refit-directions -q -o '$tmp/rd.json' && python3 -c \"import json; d=json.load(open('$tmp/rd.json')); assert d['evaluation']['refit'] and d['evaluation']['diffuse'] < 0.02\""
 check "bake --max-error picks a count" "'$bin' bake '$probe' --max-error 2% -o '$tmp/auto.json' -q && python3 -c \"import json; d=json.load(open('$tmp/auto.json')); a=d['evaluation']; assert a['auto_count']['met'] and a['diffuse'] <= 0.02 and len(d['lights']) == a['auto_count']['lights']\""

@@ -122,6 +122,39 @@ def test_bake_file_errors(tmp_path):
 
 
 @full_only
+def test_paths_are_what_the_file_system_has(tmp_path, bundled_probe):
+    """pathlib paths and bytes are taken; a name that is not UTF-8 comes back as os.fsdecode has it (the same
+    file again) and loses no result; a FIFO is refused, not waited on; a NUL is refused, not cut."""
+    import pathlib
+    import shutil
+    small = tmp_path / "sky.hdr"
+    shutil.copy(bundled_probe, small)
+    assert pl.bake_file(pathlib.Path(small), lights=2)["source"]["path"] == str(small)
+    odd = os.fsencode(tmp_path) + b"/odd\xff.hdr"
+    shutil.copy(bundled_probe, odd)
+    r = pl.bake_file(odd, lights=2)
+    assert os.fsencode(r["source"]["path"]) == odd
+    results = pl.bake_files([tmp_path], lights=2)
+    assert len(results) == 2 and all("error" not in r for r in results)
+    assert {os.fsencode(r["source"]["path"]) for r in results} == {odd, os.fsencode(small)}
+    assert len(pl.bake_files(pathlib.Path(tmp_path), lights=2)) == 2  # one path alone is a list of one
+    os.mkfifo(tmp_path / "f.hdr")
+    with pytest.raises(pl.Error, match="FIFO"):
+        pl.bake_file(tmp_path / "f.hdr")
+    with pytest.raises(pl.Error, match="NUL"):
+        pl.bake_file(str(small) + "\0.exr")
+    with pytest.raises(pl.Error, match="no such file") as e:
+        pl.bake_file(os.fsdecode(odd) + ".missing")
+    assert os.fsdecode(odd) in str(e.value)
+
+
+@full_only
+def test_max_error_below_zero_is_refused(bundled_probe):
+    with pytest.raises(pl.Error, match="max_error"):
+        pl.bake_file(bundled_probe, max_error=-1)
+
+
+@full_only
 def test_bake_file_on_the_bundled_probe(bundled_probe):
     r = pl.bake_file(bundled_probe, lights=16)
     assert r["source"]["width"] == 1024 and r["source"]["projection"] == "latlong"

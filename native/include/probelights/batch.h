@@ -27,11 +27,12 @@ struct LoadedProbe {
   double loadMs = 0;
 };
 
-// Calls consume(item) for each path in order; while it runs, the next probe is being loaded (read and
-// validated) on another thread, so a library bakes in about max(load, bake) per probe rather than the sum.
+// Calls consume(item) for each path in order, until it returns false; while it runs, the next probe is being
+// loaded (read and validated) on another thread, so a library bakes in about max(load, bake) per probe
+// rather than the sum.
 // A probe that fails to load arrives with its error; the others go on. With `grid`, each probe is read band
 // by band into the working grid that bake needs (loadGrid: item.table), for bakes that need nothing else.
 void forEachProbe(const std::vector<std::string>& paths, const ProbeOptions& options,
-                  const std::function<void(LoadedProbe&)>& consume, const BakeOptions* grid = nullptr);
+                  const std::function<bool(LoadedProbe&)>& consume, const BakeOptions* grid = nullptr);
 
 }  // namespace probelights
