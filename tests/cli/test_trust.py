@@ -337,3 +337,30 @@ def test_sh_bands_beyond_what_finishes_are_refused(small):
     for command in (["sh", small / "sky.hdr"], ["sample", small / "sky.hdr", "--epsilon", "0.01", "--samples", "9"],
                     ["bake", small / "sky.hdr", "--method", "sh"]):
         one_line_error(run(*command, "--bands", "256", timeout=20), text="at most 64")
+
+
+# Negative light: the lights are never negative and carry the probe's integral per channel.
+
+SHARED_PMNDRS = os.path.join(os.path.dirname(__file__), "..", "..", "..", "shared", "hdri",
+                             "pmndrs_esplanade_dwab.exr")
+
+
+@pytest.mark.parametrize("source", ["unsharp", "pmndrs"])
+def test_much_negative_light_keeps_the_integral(tmp_path, source):
+    if source == "unsharp":  # the bundled probe over-sharpened: 60 % of its light negative
+        probe = tmp_path / "unsharp.exr"
+        oiio(PROBE, "--unsharp:kernel=gaussian:width=9:contrast=4", "-o", probe)
+    elif os.path.exists(SHARED_PMNDRS):  # a lossy DWAB EXR's ringing, -6.5 %
+        probe = SHARED_PMNDRS
+    else:
+        pytest.skip("../shared/hdri is not beside the repository")
+    for method in ("variance", "median-cut", "sh"):
+        for n in (64, 1024):
+            out = tmp_path / f"{method}{n}.json"
+            p = run("bake", probe, "--method", method, "--lights", str(n), "-q", "-o", out)
+            assert p.returncode == 0, p.stderr
+            d = load(out)
+            for k in range(3):
+                s = sum(light["rgb"][k] for light in d["lights"])
+                assert min(light["rgb"][k] for light in d["lights"]) >= 0
+                assert abs(s - d["total_rgb"][k]) <= 1e-9 * d["total_rgb"][k], (method, n, k, s, d["total_rgb"])
