@@ -18,7 +18,7 @@ bl_info = {
 
 import bpy  # noqa: E402
 
-from . import light_objects, native, operators, properties, ui, world_image  # noqa: E402
+from . import eevee_settings, light_objects, native, operators, properties, ui, world_image  # noqa: E402
 
 classes = properties.classes + operators.classes + ui.classes
 
@@ -28,10 +28,12 @@ def register():
         bpy.utils.register_class(cls)
     properties.register()
     light_objects.register()
+    eevee_settings.register()
 
 
 def unregister():
     world_image.unregister()
+    eevee_settings.unregister()
     native.unregister()
     light_objects.unregister()
     properties.unregister()

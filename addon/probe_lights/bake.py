@@ -124,10 +124,10 @@ def bake_world(context, settings, progress=lambda fraction: None, rendered=None,
     offer = cycles_settings.advice(scene, len(lights))
     if offer:
         warnings.append(offer + " (Use Cycles settings for lamps in the panel)")
-    suns = len(lights) if settings.light_type == "SUN" else 0
-    shadows = eevee_settings.advice(scene, suns)
-    if shadows:
-        warnings.append(shadows + " (Fit EEVEE shadows in the panel)")
+    fitted = eevee_settings.follow(scene)  # in EEVEE: the pool made to hold every sun's shadow, by itself
+    if fitted:
+        notes.append("EEVEE: %s so that no shadow is dropped (Restore world puts it back)"
+                     % eevee_settings.describe(fitted))
     noise = cycles_settings.noise_note(scene, len(lights))
     if noise:
         warnings.append(noise)

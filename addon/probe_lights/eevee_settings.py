@@ -6,13 +6,19 @@ drops pages by thread timing, and the shadows (and the picture's brightness) cha
 Measured (tests/blender/test_eevee.py's scene, noon_grass, 64 suns): 6,299 pages at 1920x1080 and 6,807 at
 320x240; lit objects 4.2 % to 7.3 % from the world-lit render in repeated runs, 4.29 % every time once the pool
 held them. Halving the shadow resolution (Shadows > Resolution) takes 64 suns to 749 pages and changed a 16-sun
-render by 0.14 %. The panel says what the pool lacks and offers one click that sets the smallest pool that holds the
-suns' pages (and half or quarter resolution when even the largest pool cannot); the values it replaced are kept on
-the scene and put back by Restore world.
+render by 0.14 %. The fit is the smallest pool that holds the suns' pages (and half or quarter resolution when even
+the largest pool cannot); the values it replaced are kept on the scene and put back by Restore world.
+
+The fit follows the scene, not the click: it is made by itself whenever the scene is to render in EEVEE with baked
+suns the pool cannot hold (before every render, including `blender -b file.blend -E BLENDER_EEVEE_NEXT -f 1`; when
+the engine changes to EEVEE; when a file opens in EEVEE), because a full pool is never what the user wants: the
+suns baked under Cycles and rendered in EEVEE were 1.2-4.3 % from the Cycles reference and different at each render,
+0.24-0.41 % once the pool held them (issue 31's measurements). The panel says it was done; Restore world undoes it.
 """
 
 import bpy
 
+from .light_objects import baked_lights
 from .remembered import put_back, set_remembering
 
 BEFORE_KEY = "probe_lights_eevee_before"  # on the scene: the settings the offer replaced
@@ -64,11 +70,8 @@ def advice(scene, suns):
     EEVEE Next)."""
     if not _eevee_next(scene) or suns < 2 or not _wanted(scene, suns):
         return ""
-    eevee = scene.eevee
-    return ("EEVEE: %d suns need about %s shadow pages and the pool (%s MB) holds %s: EEVEE drops shadows at random "
-            "(measured: the lit objects up to 3.3 %% brighter from one render to the next)"
-            % (suns, format(_pages(suns, eevee.shadow_resolution_scale), ","), eevee.shadow_pool_size,
-               format(int(eevee.shadow_pool_size) * PAGES_PER_MB, ",")))
+    return ("EEVEE's shadow pool is too small for %d suns and drops shadows at random: fit the shadows to the lamps"
+            % suns)
 
 
 def apply(scene, suns):
@@ -84,6 +87,80 @@ def restore(scene):
     """Puts back what apply() replaced. Returns the names restored."""
     return put_back(scene, BEFORE_KEY, scene.eevee,
                     lambda name, value: str(value) if name == "shadow_pool_size" else float(value))
+
+
+def baked_suns(scene):
+    """The sun lamps the add-on baked for the scene's world: what the shadow pool must hold."""
+    return sum(1 for o in baked_lights(scene.world) if o.type == "LIGHT" and o.data.type == "SUN")
+
+
+def fitted(scene):
+    """Whether the pool (or resolution) was fitted to the lamps and not put back yet."""
+    return bool(scene.get(BEFORE_KEY))
+
+
+def follow(scene):
+    """Fits the shadow pool to the scene's baked suns when it renders in EEVEE Next and the pool cannot hold them.
+    Returns what it set ({} when nothing was needed)."""
+    if not _eevee_next(scene):
+        return {}
+    suns = baked_suns(scene)
+    if suns < 2 or not _wanted(scene, suns):
+        return {}
+    return apply(scene, suns)
+
+
+def _say(scene, changed):
+    print("Probe Lights: EEVEE %s for the %d baked suns, so that no shadow is dropped (Restore world puts it back)"
+          % (describe(changed), baked_suns(scene)))
+
+
+@bpy.app.handlers.persistent
+def _before_render(scene, *_):
+    try:
+        changed = follow(scene)
+    except (AttributeError, ReferenceError, RuntimeError, TypeError):
+        return
+    if changed:
+        _say(scene, changed)
+
+
+def _engine_changed():
+    scene = getattr(bpy.context, "scene", None)
+    if scene is not None:
+        _before_render(scene)
+
+
+_OWNER = object()
+
+
+def _subscribe():
+    bpy.msgbus.clear_by_owner(_OWNER)
+    bpy.msgbus.subscribe_rna(key=(bpy.types.RenderSettings, "engine"), owner=_OWNER, args=(),
+                             notify=_engine_changed, options={"PERSISTENT"})
+
+
+@bpy.app.handlers.persistent
+def _after_load(*_):
+    _subscribe()  # a file load clears the message bus
+    for scene in bpy.data.scenes:
+        _before_render(scene)
+
+
+def register():
+    if bpy.app.version < (4, 2, 0):
+        return
+    for handlers, f in ((bpy.app.handlers.render_pre, _before_render), (bpy.app.handlers.load_post, _after_load)):
+        if f not in handlers:
+            handlers.append(f)
+    _subscribe()
+
+
+def unregister():
+    for handlers, f in ((bpy.app.handlers.render_pre, _before_render), (bpy.app.handlers.load_post, _after_load)):
+        if f in handlers:
+            handlers.remove(f)
+    bpy.msgbus.clear_by_owner(_OWNER)
 
 
 def describe(wanted):

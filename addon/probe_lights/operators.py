@@ -268,9 +268,7 @@ class PROBE_LIGHTS_OT_eevee_settings(bpy.types.Operator):
     bl_options = {"REGISTER", "UNDO"}
 
     def execute(self, context):
-        settings = context.scene.probe_lights
-        suns = settings.last_count if settings.light_type == "SUN" else 0
-        changed = eevee_settings.apply(context.scene, suns)
+        changed = eevee_settings.apply(context.scene, eevee_settings.baked_suns(context.scene))
         if changed:
             self.report({"INFO"}, "EEVEE: set %s (Restore world puts them back)" % eevee_settings.describe(changed))
         else:

@@ -115,12 +115,15 @@ def _draw_results(layout, context, width, measure):
         box = layout.box()
         _lines(box.column(align=True), offer, width - 16, measure, icon="ERROR")
         box.operator("probe_lights.cycles_settings", icon="CHECKMARK")
-    suns = settings.last_count if settings.light_type == "SUN" else 0
+    suns = eevee_settings.baked_suns(scene)
     shadows = eevee_settings.advice(scene, suns)
     if shadows:
         box = layout.box()
         _lines(box.column(align=True), shadows, width - 16, measure, icon="ERROR")
         box.operator("probe_lights.eevee_settings", icon="CHECKMARK")
+    elif suns and eevee_settings.fitted(scene):
+        _lines(layout.column(align=True), "EEVEE's shadows are fitted to the lamps (Restore world puts them back)",
+               width, measure, icon="INFO")
 
 
 def _draw_baked_worlds(layout, scene):

@@ -553,9 +553,10 @@ def test_cycles_settings_offer_and_restore():
     assert scene.cycles.sample_clamp_indirect == 10.0 and (not has_tree or not scene.cycles.use_light_tree)
 
 
-def test_eevee_shadow_pool_offer_and_restore():
-    """EEVEE Next (4.2+) keeps shadows in a pool that about 19 suns fill: the bake says so, the offer makes room
-    without ever shrinking the pool or going past 1 GB, and Restore world puts the user's values back."""
+def test_eevee_shadow_pool_follows_the_scene_and_restore():
+    """EEVEE Next (4.2+) keeps shadows in a pool that about 19 suns fill: a bake in EEVEE makes room by itself,
+    without ever shrinking the pool or going past 1 GB, and says so; so does a render in EEVEE of suns baked under
+    Cycles; the offer in the panel does it too; Restore world puts the user's values back."""
     harness.empty_scene()
     scene = bpy.context.scene
     harness.env_world(bpy.data.images.load(harness.BUNDLED_PROBE))
@@ -564,23 +565,33 @@ def test_eevee_shadow_pool_offer_and_restore():
     shadows = harness.addon_module("eevee_settings")
     if bpy.app.version < (4, 2, 0):  # EEVEE Legacy has no shadow pool
         bake(count=64)
-        assert "shadow pages" not in settings.last_warnings and shadows.advice(scene, 64) == ""
+        assert "EEVEE" not in settings.last_notes and shadows.advice(scene, 64) == ""
         print("  skipped: EEVEE Legacy (Blender %s) has no shadow pool" % bpy.app.version_string)
         return
     scene.eevee.shadow_pool_size, scene.eevee.shadow_resolution_scale = "512", 1.0
     bake(count=16)  # 16 suns: about 1,900 pages, the default pool holds 2,048
-    assert "shadow pages" not in settings.last_warnings, settings.last_warnings
+    assert "EEVEE" not in settings.last_notes and not shadows.fitted(scene), settings.last_notes
     bake(count=30)  # about 3,500 pages: a 1 GB pool at full resolution
-    assert "30 suns need about 3,531 shadow pages" in settings.last_warnings, settings.last_warnings
-    assert bpy.ops.probe_lights.eevee_settings() == {"FINISHED"}
+    assert "EEVEE: shadow pool 1024 MB" in settings.last_notes, settings.last_notes
     assert (scene.eevee.shadow_pool_size, scene.eevee.shadow_resolution_scale) == ("1024", 1.0)
     bake(count=64)  # more than 1 GB holds at full resolution: half resolution in the pool already set
-    assert bpy.ops.probe_lights.eevee_settings() == {"FINISHED"} and shadows.advice(scene, 64) == ""
+    assert shadows.advice(scene, 64) == "" and shadows.baked_suns(scene) == 64
     assert (scene.eevee.shadow_pool_size, scene.eevee.shadow_resolution_scale) == ("1024", 0.5)
     assert bpy.ops.probe_lights.restore() == {"FINISHED"}
     assert (scene.eevee.shadow_pool_size, scene.eevee.shadow_resolution_scale) == ("512", 1.0)
+    # Baked under Cycles (no pool to fit), then set to EEVEE: the panel says what to do in one line, the offer
+    # does it, and Restore puts it back.
+    scene.render.engine = "CYCLES"
+    bake(count=30)
+    assert not shadows.fitted(scene) and scene.eevee.shadow_pool_size == "512"
+    scene.render.engine = harness.eevee_engine()
+    line = shadows.advice(scene, shadows.baked_suns(scene))
+    assert line == ("EEVEE's shadow pool is too small for 30 suns and drops shadows at random: fit the shadows to "
+                    "the lamps"), line
+    assert bpy.ops.probe_lights.eevee_settings() == {"FINISHED"} and shadows.advice(scene, 30) == ""
+    assert bpy.ops.probe_lights.restore() == {"FINISHED"} and scene.eevee.shadow_pool_size == "512"
     scene.eevee.shadow_resolution_scale = 0.75  # between two measured scales: costed as the finer one
-    assert "20 suns need about 2,354" in shadows.advice(scene, 20), shadows.advice(scene, 20)
+    assert shadows._pages(20, 0.75) == 2354
     scene.eevee.shadow_resolution_scale = 1.0
     scene.render.engine = "CYCLES"
 
@@ -734,7 +745,7 @@ harness.run([test_register_unregister, test_real_probes_bake_with_their_energy,
              test_worlds_keep_their_own_lamps_and_mix, test_a_bake_by_version_0_1_is_adopted,
              test_the_bakes_nodes_are_framed_beside_the_users,
              test_tolerance_never_backfires, test_cycles_settings_offer_and_restore,
-             test_eevee_shadow_pool_offer_and_restore, test_the_read_buffer_is_reused_only_when_nobody_holds_it,
+             test_eevee_shadow_pool_follows_the_scene_and_restore, test_the_read_buffer_is_reused_only_when_nobody_holds_it,
              test_the_cores_table_buffers_are_given_back_a_minute_after_the_last_bake,
              test_inputs_that_are_not_what_they_claim, test_thousands_of_lamps_go_in_one_batch,
              test_panel_draws_at_default_width_in_this_blender,
