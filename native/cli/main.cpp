@@ -68,6 +68,7 @@ options:
 int main(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
   quietLibraries();
+  removeTemporariesOnSignal();  // Ctrl-C during a write leaves no temporary file (a library bake asks more)
   try {
     if (!args.empty() && args[0] == "--version") {
       std::puts("probelights " PROBELIGHTS_VERSION);

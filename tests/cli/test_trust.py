@@ -65,7 +65,9 @@ def tmpfs(tmp_path):
         pytest.skip("mounting a small tmpfs needs root")
     mnt = tmp_path / "mnt"
     mnt.mkdir()
-    subprocess.run(["mount", "-t", "tmpfs", "-o", "size=256k", "tmpfs", str(mnt)], check=True)
+    p = subprocess.run(["mount", "-t", "tmpfs", "-o", "size=256k", "tmpfs", str(mnt)], capture_output=True)
+    if p.returncode != 0:  # a container without the right to mount
+        pytest.skip("cannot mount a small tmpfs here: " + p.stderr.decode(errors="replace").strip())
     yield mnt
     subprocess.run(["umount", "-l", str(mnt)], check=True)
 
