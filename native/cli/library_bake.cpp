@@ -31,7 +31,7 @@ namespace fs = std::filesystem;
 const char* kGenerator = "probelights " PROBELIGHTS_VERSION;
 
 // Whether the JSON file at `path` is one a bake wrote (a result or a summary), which a new bake may replace.
-// Results of versions before the "generator" key are known by their keys.
+// Results and summaries of versions before the "generator" key are known by their keys.
 bool ourJson(const fs::path& path) {
   std::error_code ec;
   if (fs::file_size(path, ec) > (64u << 20) || ec) return false;
@@ -40,7 +40,8 @@ bool ourJson(const fs::path& path) {
   if (!j.is_object()) return false;
   if (auto g = j.find("generator"); g != j.end())
     return g->is_string() && g->get<std::string>().rfind("probelights", 0) == 0;
-  return j.contains("source") && j.contains("lights") && j.contains("total_rgb");
+  return (j.contains("source") && j.contains("lights") && j.contains("total_rgb")) ||  // a result
+         (j.contains("probes") && j.contains("baked") && j.contains("results"));       // a summary
 }
 
 // Whether the image at `path` is a preview a bake wrote (its Software tag, preview.h).

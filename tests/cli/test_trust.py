@@ -131,6 +131,10 @@ def test_a_summary_json_of_the_users_is_refused(tmp_path, small):
     (out / "summary.json").write_text('{"mine": true}\n')
     one_line_error(run("bake", small / "sky.hdr", "--out-dir", out), text="not written by probelights")
     assert load(out / "summary.json") == {"mine": True}
+    # A summary of an earlier version (no "generator" key) is the bake's own, and replaced.
+    (out / "summary.json").write_text('{"probes": 1, "baked": 1, "failed": 0, "results": []}\n')
+    assert run("bake", small / "sky.hdr", "--out-dir", out, "-q").returncode == 0
+    assert load(out / "summary.json")["generator"].startswith("probelights")
 
 
 @pytest.mark.parametrize("flag", ["-o", "--preview"])
