@@ -93,9 +93,7 @@ def run_case(binary, folder, index, name, data, kind):
     try:
         p = subprocess.run(args, capture_output=True, timeout=TIME_LIMIT, preexec_fn=limit)
     except subprocess.TimeoutExpired:
-        return f"timed out after {TIME_LIMIT} s"
-    finally:
-        keep = path
+        return f"timed out after {TIME_LIMIT} s (kept {path})"
     err = p.stderr.decode(errors="replace")
     problem = None
     if p.returncode == 0:
@@ -116,7 +114,7 @@ def run_case(binary, folder, index, name, data, kind):
             if os.path.exists(f):
                 os.remove(f)
         return None
-    return f"{problem}: {err.strip()[:300]} (kept {keep})"
+    return f"{problem}: {err.strip()[:300]} (kept {path})"
 
 
 def main():
