@@ -1,8 +1,7 @@
 """docs/eevee.md's table: EEVEE with the baked lamps against EEVEE with its own world lighting (and its sun
 extraction), each against Cycles lit by the world, on the probes the tests have (the bundled noon_grass and
-Blender's own studio lights). The scene is the render test's sphere over a plane (tests/blender/render_scene.py);
-three cases
-of the lamps: baked in EEVEE (the pool fitted at the bake), baked under Cycles then rendered in EEVEE (fitted before
+Blender's own studio lights). The scene is the render test's sphere over a plane (tests/blender/render_scene.py).
+Three cases of the lamps: baked in EEVEE (the pool fitted at the bake), baked under Cycles then rendered in EEVEE (fitted before
 the render), and baked under Cycles with the fit undone (what users got before issue 31: a full shadow pool). The
 difference is render_scene.block_difference's: 8x8 blocks of lit pixels, mean |EEVEE - Cycles| / Cycles of their
 luminance (blocks average away the Cycles reference's noise), the reference with direct light only (EEVEE bounces

@@ -4,6 +4,7 @@
 // is. Nothing is overwritten that a bake did not write (outputNames), and a disk that fills or Ctrl-C stops
 // the run with a summary of what was done.
 #include <OpenImageIO/imageio.h>
+#include <OpenImageIO/strutil.h>
 #include <sys/statvfs.h>
 #include <unistd.h>
 
@@ -77,11 +78,6 @@ void prepareOutDir(const fs::path& dir, const std::vector<std::string>& inputs) 
                      "' exists and was not written by probelights: choose another --out-dir or move it");
 }
 
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
-
 // One output name per probe: its file name without the extension, or with _2, _3, ... the first that no
 // other probe of this run takes (compared without case: case-insensitive file systems) and whose files in
 // the folder are missing or a bake's own (ourJson, ourPreview) and none of the probes. Nothing else in the
@@ -115,11 +111,11 @@ std::vector<std::string> outputNames(const std::vector<std::string>& paths, cons
     std::string stem = textName(fs::path(p).stem().string());
     if (stem.empty() || stem[0] == '.') stem = "probe" + stem;
     std::string name = stem;
-    for (int n = 2; taken.count(lower(name)) || !free(dir / (name + ".json"), false) ||
+    for (int n = 2; taken.count(OIIO::Strutil::lower(name)) || !free(dir / (name + ".json"), false) ||
                     (previews && !free(dir / (name + ".png"), true));
          ++n)
       name = stem + "_" + std::to_string(n);
-    taken.insert(lower(name));
+    taken.insert(OIIO::Strutil::lower(name));
     names.push_back(name);
   }
   return names;

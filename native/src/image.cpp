@@ -2,6 +2,7 @@
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
+#include <OpenImageIO/strutil.h>
 
 #include <algorithm>
 #include <cmath>
@@ -100,8 +101,7 @@ void checkClaims(const std::string& path, const OIIO::ImageSpec& spec, std::uint
 std::string channelName(const OIIO::ImageSpec& spec, int c) {
   std::string name = c < static_cast<int>(spec.channelnames.size()) ? spec.channelnames[c] : "";
   if (const auto dot = name.rfind('.'); dot != std::string::npos) name = name.substr(dot + 1);  // layer.R
-  for (char& ch : name) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
-  return name;
+  return OIIO::Strutil::upper(name);
 }
 
 std::string channelList(const OIIO::ImageSpec& spec) {
@@ -137,16 +137,14 @@ Transfer transferOf(const OIIO::ImageSpec& spec, const std::string& format, std:
   const OIIO::TypeDesc::BASETYPE base = static_cast<OIIO::TypeDesc::BASETYPE>(spec.format.basetype);
   if (base == OIIO::TypeDesc::FLOAT || base == OIIO::TypeDesc::HALF || base == OIIO::TypeDesc::DOUBLE)
     return {};
-  std::string space = spec.get_string_attribute("oiio:ColorSpace");
-  std::string lower = space;
-  for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string space = spec.get_string_attribute("oiio:ColorSpace");
   const std::string what = std::to_string(spec.format.size() * 8) + "-bit " + format;
-  if (lower.find("linear") != std::string::npos || lower.rfind("lin_", 0) == 0) {
+  if (OIIO::Strutil::icontains(space, "linear") || OIIO::Strutil::istarts_with(space, "lin_")) {
     notes.push_back(what + ": read as linear light (the file says " + space + ")");
     return {};
   }
   const float gamma = spec.get_float_attribute("oiio:Gamma", 0.0f);
-  if (lower.rfind("gamma", 0) == 0 && gamma > 0.1f && gamma < 10.0f) {
+  if (OIIO::Strutil::istarts_with(space, "gamma") && gamma > 0.1f && gamma < 10.0f) {
     notes.push_back(what + ": values decoded with gamma " + std::to_string(gamma).substr(0, 4) +
                     " to linear light (the file's)");
     return {Transfer::Gamma, gamma};
