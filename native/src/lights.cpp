@@ -95,23 +95,24 @@ std::vector<Light> lightsFromSums(const Probe& probe, const std::vector<Rect>& r
   }
   // Each deficit is taken from the lights nearest it, as much from each as it has (a light ends at 0, never
   // below), so the lights carry the probe's integral exactly whenever that is positive; only the part of a
-  // channel whose whole integral is not positive is left out (its light cannot be a lamp), and said by the
-  // bake (negativeChannels).
-  std::vector<std::size_t> order(lights.size());
-  for (const Deficit& d : deficits) {
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-      return dot(lights[a].direction, d.direction) > dot(lights[b].direction, d.direction);
-    });
+  // channel whose whole integral is not positive is left out (its light cannot be a lamp), and the bake says
+  // so (bake.cpp, noteNonPositiveChannels). The nearest light that still has some is found by a scan each
+  // time: a deficit usually ends at the first (a sort per deficit cost L log L, and up to 65536 lights).
+  for (const Deficit& d : deficits)
     for (int k = 0; k < 3; ++k) {
       double owed = -d.rgb[k];
-      for (std::size_t i = 0; i < order.size() && owed > 0; ++i) {
-        double& c = lights[order[i]].rgb[k];
-        const double taken = std::min(c, owed);
-        if (taken > 0) c -= taken, owed -= taken;
+      while (owed > 0) {
+        Light* nearest = nullptr;
+        for (Light& l : lights)
+          if (l.rgb[k] > 0 &&
+              (!nearest || dot(l.direction, d.direction) > dot(nearest->direction, d.direction)))
+            nearest = &l;
+        if (!nearest) break;  // no light has any left: the channel's integral is not positive
+        const double taken = std::min(nearest->rgb[k], owed);
+        owed -= taken;
+        nearest->rgb[k] = taken == nearest->rgb[k] ? 0.0 : nearest->rgb[k] - taken;
       }
     }
-  }
   return lights;
 }
 
