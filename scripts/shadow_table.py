@@ -1,4 +1,4 @@
-"""The README's before/after shadow table from scripts/bench_shadow_table.sh's output (one file per Blender):
+"""The before/after shadow table of docs/shadows.md from scripts/bench_shadow_table.sh's output (one file per Blender):
 
     python3 scripts/shadow_table.py table45.txt table34.txt
 

@@ -39,18 +39,17 @@ AutoCountResult autoCount(const Probe& probe, const Evaluator& evaluator, BakeOp
                           double tolerance, bool refit, int maxLights = 1024, bool moveDirections = false,
                           const WorkingGrid* grid = nullptr, SunAngles angles = SunAngles::Spread);
 
-// Whose lights a bake keeps. Neither cut wins everywhere (median cut fits 5 of the 15 probes better at 16
-// suns, 5 at 64), so both can be tried, each judged by how its diffuse light and shadows fit the probe
+// Whose lights a bake keeps. Neither cut wins everywhere (median cut fits a third of the probes here better),
+// so both can be tried, each judged by how its diffuse light and shadows fit the probe
 // (Evaluator::fitError on the fit receivers, not the points the errors are measured on):
 // - one: the bake's method's lights.
 // - both: the lights of variance minimization and of median cut each made ready (finishLights) and the
-//   better kept; the pick has the lower estimated shadow error on 26 of those 30 (README). Costs a second
-//   finishLights (64 suns with the add-on's refit: ~0.3 s).
+//   better kept (the pick agrees with the lower estimated shadow error on most probes: docs/cli.md). Costs a
+//   second finishLights.
 // - auto: both up to kBothFinishedUpTo lights (or without the refit, where finishing is only the angles);
 //   above, both cuts are started (their angles fitted, finishLights' first step, and their colours solved:
-//   solveColours) and only the better is finished. At 64 suns over the 15 probes (add-on settings, estimated
-//   shadow error): one 0.339 % mean (worst 0.701, st_peters), auto 0.320 (0.655; it takes median cut on
-//   st_peters alone: 0.413), both 0.297 (0.655; median cut on 5); 4K module bake +~70 ms against +~300.
+//   solveColours) and only the better is finished: most of both's gain for a fraction of its cost
+//   (docs/cli.md, "Methods and knobs").
 // The kept lights are those that cut alone, finished as finishLights finishes them, gives (the same bits).
 enum class CutChoice { One, Both, Auto };
 inline constexpr std::size_t kBothFinishedUpTo = 16;

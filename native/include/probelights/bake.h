@@ -60,7 +60,7 @@ BakeResult bake(const Probe& probe, const BakeOptions& options);
 
 // The same on a working grid already built from `probe` (its cell size is the resolution; options.resolution
 // is not read), for callers that bake one probe at several counts: the grid is built once (autoCount, the
-// tradeoff grid; at 8K `auto` a build is ~170 ms of a ~190 ms bake). timings.tablesMs is 0: the caller knows
+// tradeoff grid; at 8K `auto` the build is most of a bake). timings.tablesMs is 0: the caller knows
 // what the build cost. Not for Method::SphericalHarmonics, which has no grid (throws Error).
 BakeResult bake(const Probe& probe, const MomentTable& table, const BakeOptions& options);
 

@@ -20,9 +20,7 @@ namespace probelights {
 inline constexpr std::size_t kMaxRefitLights = 256;
 // moveDirections: also moves each light's direction (coordinate descent: steps of 4, 2, 1 and 0.5 degrees
 // along two tangent axes, kept when the fit improves; three rounds up to 16 lights, two above, each followed
-// by the NNLS colours).
-// Measured at 16 lights on studiolights: diffuse error 1.8 -> 1.3 % (city), 2.3 -> 1.5 % (sunset), 3.0 -> 1.9
-// % (Kerner), shadows unchanged or better.
+// by the NNLS colours): lower diffuse error at few lights, shadows unchanged or better (docs/shadows.md).
 std::vector<Light> refitIrradiance(const Evaluator& evaluator, const std::vector<Light>& lights,
                                    double* energyShift = nullptr, bool moveDirections = false);
 
@@ -32,15 +30,13 @@ void solveColours(const Evaluator& evaluator, const std::vector<Receiver>& recei
                   std::vector<Light>& lights);
 
 // Lights the colour solve left dark (luminance 0: their region's light is better carried by their
-// neighbours; 2 of 16 on st_peters_square_night, 5 of 64 on StageEnvLatLong) are placed anew where the fit
+// neighbours, as on a few probes here) are placed anew where the fit
 // wants light most: each in turn at the candidate direction (the probe's 256 brightest samples and the
 // evaluator's 256 evenly spread normals) whose point kernel k best explains the remaining residual r on the
 // receivers, i.e. the largest (k . r)^2 / (k . k) with k . r > 0 (weights as the fit's), as a point (angle 0:
 // the angle fit, if any, comes after). refitIrradiance solves the colours again after; that can only lower
 // the fit's error (the old colours, the moved lights' zero, are still a solution). Returns whether any light
-// moved. With the add-on's refit (energy^2 centroids, directions, fitted angles), 16 lights, diffuse / shadow
-// error: Kerner 0.93 / 1.46 -> 0.47 / 1.22 %, Blender's night 1.97 / 2.03 -> 1.91 / 1.58, sunrise 0.48 /
-// 0.81 -> 0.31 / 0.66; 64: StageEnv 0.19 / 0.44 -> 0.11 / 0.33; probes with no dark light unchanged.
+// moved. Probes with no dark light are unchanged.
 bool placeDarkLights(const Evaluator& evaluator, const std::vector<Receiver>& receivers,
                      std::vector<Light>& lights);
 
