@@ -117,9 +117,8 @@ def bake_world(context, settings, progress=lambda fraction: None, rendered=None,
     total = float(np.dot(baked["total_rgb"], LUM))
     captured = float(np.sum(baked["lights"]["rgb"] @ LUM))
     if refit and total > 0:
-        notes.append("Refit: the lamps' strengths sum to %.1f %% of the world's light, fitted to its diffuse light "
-                     "and shadows (a wide sun gives more light than its strength, which a facing surface gets)"
-                     % (100.0 * captured / total))
+        # Less than 100 %: a wide sun gives a facing surface more light than its strength (docs/blender.md).
+        notes.append("Refit: the lamps' strengths sum to %.1f %% of the world's light" % (100.0 * captured / total))
     warnings += [n for n in baked["notes"] if _native_warning(n)]
     offer = cycles_settings.advice(scene, len(lights))
     if offer:

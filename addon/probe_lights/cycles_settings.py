@@ -2,9 +2,10 @@
 
 Cycles' default indirect clamp (10) cuts the bright bounce paths a sun makes, so bounce light under baked suns
 renders darker than under the world; Blender 4.0+ picks among many lamps with its light tree (3.x has none: many
-lamps get noisy, render_cost.py). The panel says what the scene's settings cost (measured with
-scripts/bench_cycles_settings.py) and offers one click that sets them; the values it replaced are kept on the scene
-and put back by Restore world (when no baked world of the scene is left).
+lamps get noisy, render_cost.py). The panel says which of the scene's settings cost the lamps light or noise
+(MEASURED below, from scripts/bench_cycles_settings.py; the figures in docs/renders.md) and offers one click that
+sets them; the values it replaced are kept on the scene and put back by Restore world (when no baked world of the
+scene is left).
 """
 
 import bpy
@@ -51,14 +52,11 @@ def advice(scene, lamps):
     wanted = _wanted(scene)
     version = measured_version(bpy.app.version)
     measured = MEASURED.get(version, MEASURED[(4, 5, 15)])
-    named = ".".join(map(str, version))
     parts = []
     if "sample_clamp_indirect" in wanted and measured["darkening"] >= MATTERS:
-        parts.append("the indirect clamp (%g) darkens the lamps' bounce light: 64 suns rendered up to %.1f %% darker "
-                     "in Blender %s" % (scene.cycles.sample_clamp_indirect, measured["darkening"], named))
+        parts.append("the indirect clamp (%g) darkens the lamps' bounce light" % scene.cycles.sample_clamp_indirect)
     if "use_light_tree" in wanted:
-        parts.append("the light tree is off: without one, 64 suns rendered %.0fx the world's noise (Blender 3.4.1)" %
-                     MEASURED[(3, 4, 1)]["noise"])
+        parts.append("the light tree is off, so many lamps render noisily")
     return "Cycles: " + "; ".join(parts) if parts else ""
 
 
@@ -67,9 +65,7 @@ def noise_note(scene, lamps):
     cycles = getattr(scene, "cycles", None)
     if scene.render.engine != "CYCLES" or cycles is None or hasattr(cycles, "use_light_tree") or lamps < 32:
         return ""
-    return ("Cycles %s has no light tree: at 64 samples, 64 suns rendered %.0fx the world's noise (measured); "
-            "use fewer lamps or more samples" % (".".join(map(str, bpy.app.version)),
-                                                 MEASURED[(3, 4, 1)]["noise"]))
+    return "Cycles %d.%d has no light tree: many lamps render noisily; use fewer or more samples" % bpy.app.version[:2]
 
 
 def apply(scene):

@@ -234,7 +234,7 @@ def test_blender_5_renders_every_world_through_its_nodes():
 def test_render_cost_advice_follows_the_running_version():
     """With today's bakes 32 suns render as close as any count in every version on all three probes measured (3.4:
     noise past it; 4.5+: time without gain); the probe whose own sweet spot is the largest decides, and the note
-    quotes the running version's own measurements of it."""
+    names the running version's cost: noise or time."""
     import render_cost
     for version in ((3, 4, 1), (4, 5, 15), (5, 0, 1), (5, 2, 3), (5, 3, 0)):
         assert render_cost.sweet_spot(version) == 32
@@ -244,6 +244,7 @@ def test_render_cost_advice_follows_the_running_version():
     assert render_cost.measured_version((4, 2, 0)) == (4, 5, 15) and render_cost.measured_version((5, 1, 0)) == (5, 0, 1)
     assert render_cost.measured_version((3, 6, 0)) == (3, 4, 1) and render_cost.measured_version((5, 4, 0)) == (5, 3, 0)
     old, new = render_cost.count_note(128, (3, 4, 1)), render_cost.count_note(256, (4, 5, 15))
-    assert "Blender 3.4.1 (forest" in old and "128 suns 0.9x and 0.43 %" in old, old
-    assert "Blender 4.5.15 (forest" in new and "256 suns 12.8x and 0.22 %" in new, new
-    assert "\n" not in new
+    # Advice, not figures (those are in render_cost.MEASURED and docs/renders.md): noise without a light tree,
+    # time with one.
+    assert old == "More than 32 suns: noisier renders, no closer in Cycles 3.4", old
+    assert new == "More than 32 suns: slower renders, no closer in Cycles 4.5", new
