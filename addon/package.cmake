@@ -1,7 +1,7 @@
 # Packs one platform's add-on zip, whole or not at all (written beside the zip, then renamed over it):
 #   cmake -DSOURCE=addon/probe_lights -DMODULES="a.pyd|b.pyd" -DPLATFORM=windows-x64 -DSTAGE=dir -DZIP=out.zip \
 #         -P addon/package.cmake
-# The zip holds probe_lights/ with the add-on's .py files, its manifest with `platforms` set to PLATFORM alone
+# The zip holds probe_lights/ with the add-on's .py and .json (measured data) files, its manifest with `platforms` set to PLATFORM alone
 # (what Blender's `extension build --split-platforms` writes), and that platform's native modules.
 foreach(var SOURCE MODULES PLATFORM STAGE ZIP)
   if(NOT DEFINED ${var})
@@ -15,7 +15,7 @@ if(count EQUAL 0)
 endif()
 file(REMOVE_RECURSE ${STAGE})
 file(MAKE_DIRECTORY ${STAGE}/probe_lights)
-file(GLOB sources ${SOURCE}/*.py)
+file(GLOB sources ${SOURCE}/*.py ${SOURCE}/*.json)
 file(COPY ${sources} ${MODULES} DESTINATION ${STAGE}/probe_lights)
 file(READ ${SOURCE}/blender_manifest.toml manifest)
 string(REGEX MATCH "\nplatforms = \\[[^]]*\\]" found "${manifest}")

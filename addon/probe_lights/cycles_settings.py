@@ -3,7 +3,7 @@
 Cycles' default indirect clamp (10) cuts the bright bounce paths a sun makes, so bounce light under baked suns
 renders darker than under the world; Blender 4.0+ picks among many lamps with its light tree (3.x has none: many
 lamps get noisy, render_cost.py). The panel says which of the scene's settings cost the lamps light or noise
-(MEASURED below, from scripts/bench_cycles_settings.py; the figures in docs/renders.md) and offers one click that
+(MEASURED below, from bench/bench_cycles_settings.py; the figures in docs/renders.md) and offers one click that
 sets them; the values it replaced are kept on the scene and put back by Restore world (when no baked world of the
 scene is left).
 """
@@ -15,17 +15,16 @@ from .render_cost import measured_version
 
 BEFORE_KEY = "probe_lights_cycles_before"  # on the scene: the settings the offer replaced
 
-# Measured with scripts/bench_cycles_settings.py (sphere over plane, 4 bounces, 128x96), per Blender version:
-#   darkening: how much darker 64 baked suns render with the default indirect clamp (10) than unclamped, worst
-#     of noon_grass, thatch_chapel, KernerEnvLatLong and pmndrs_esplanade (256 samples; 5.x: noon_grass only);
-#   noise: 64 suns' noise at 64 samples as a multiple of the world-lit render's (8x8-block means, noon_grass).
-# 3.4 picks lamps without a light tree: the clamp cuts the rare, bright sun samples. 4.5+ (light tree): no effect.
+# From bench/bench_cycles_settings.py (sphere over plane, 4 bounces; figures in docs/renders.md), per Blender
+# version: how much darker (%) 64 baked suns render with the default indirect clamp (10) than unclamped, the worst
+# of the probes it ran on. 3.4 picks lamps without a light tree, and the clamp cuts the rare, bright sun samples;
+# with the light tree (4.5+) the clamp changes nothing measurable.
 MEASURED = {
-    (3, 4, 1): {"darkening": 3.0, "noise": 19.0},
-    (4, 5, 15): {"darkening": 0.0, "noise": 2.0},
-    (5, 0, 1): {"darkening": 0.0, "noise": 2.0},
-    (5, 2, 3): {"darkening": 0.0, "noise": 2.0},
-    (5, 3, 0): {"darkening": 0.0, "noise": 2.0},
+    (3, 4, 1): {"darkening": 3.0},
+    (4, 5, 15): {"darkening": 0.0},
+    (5, 0, 1): {"darkening": 0.0},
+    (5, 2, 3): {"darkening": 0.0},
+    (5, 3, 0): {"darkening": 0.0},
 }
 MATTERS = 0.5  # percent: a darkening below this is not worth a word
 
@@ -45,8 +44,8 @@ def _wanted(scene):
 
 
 def advice(scene, lamps):
-    """One line on what the scene's Cycles settings cost the baked lamps, with this version's measured figures, or
-    '' when the settings cost nothing measurable."""
+    """One line on what the scene's Cycles settings cost the baked lamps in this version, or '' when they cost
+    nothing measurable."""
     if scene.render.engine != "CYCLES" or lamps < 2:
         return ""
     wanted = _wanted(scene)

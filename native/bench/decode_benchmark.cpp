@@ -7,7 +7,7 @@
 //   build/bin/probelights_decode_bench --benchmark_filter=hdr  one format
 //   PROBELIGHTS_LIBRARY=DIR build/bin/probelights_decode_bench --benchmark_filter=Library
 //                                          every image file of DIR read one after another (what `probelights
-//                                          bake DIR --out-dir` is measured against: scripts/bench_library.sh)
+//                                          bake DIR --out-dir` is measured against: bench/bench_library.sh)
 // The files are made once in $TMPDIR/probelights_decode/ (Radiance .hdr, OpenEXR half and float with ZIP).
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>

@@ -10,7 +10,7 @@ import tempfile
 import bpy
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "harness"))
 import harness  # noqa: E402
 import render_scene  # noqa: E402
 

@@ -15,7 +15,7 @@ import sys
 
 import bpy
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "harness"))
 import harness  # noqa: E402
 import render_scene  # noqa: E402
 
@@ -98,7 +98,7 @@ def test_negative_samples_are_light_the_lamps_and_the_estimate_keep():
     light, which Cycles renders. When the lights and the estimate dropped them, 16 suns rendered 10.2 % from the
     world-lit render against an estimate of 2.5 %; keeping them, the two agree (4.5.15: 2.59 % / 2.70 %).
     Cycles 3.x renders a world's negative pixels only in part (3.4.1: its world render 1.75 % from the probe's
-    truth at the ground points, 4.5's 0.58 %, its noise; scripts/render_vs_model.py), so there the lamps' render is
+    truth at the ground points, 4.5's 0.58 %, its noise; bench/render_vs_model.py), so there the lamps' render is
     compared with the truth computed from the probe's pixels (3.4.1, 16 refit suns: 0.87 %, estimated 0.80 %)."""
     probe = harness.shared_probe(a, "pmndrs_esplanade_dwab.exr")
     if probe:

@@ -9,7 +9,7 @@ import traceback
 
 import bpy
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "harness"))
 import harness  # noqa: E402
 
 ARGS = harness.args()

@@ -1,13 +1,13 @@
 """docs/eevee.md's table: EEVEE with the baked lamps against EEVEE with its own world lighting (and its sun
 extraction), each against Cycles lit by the world, on the probes the tests have (the bundled noon_grass and
-Blender's own studio lights). The scene is the render test's sphere over a plane (tests/blender/render_scene.py).
+Blender's own studio lights). The scene is the render test's sphere over a plane (harness/render_scene.py).
 Three cases of the lamps: baked in EEVEE (the pool fitted at the bake), baked under Cycles then rendered in EEVEE (fitted before
 the render), and baked under Cycles with the fit undone (what users got before issue 31: a full shadow pool). The
 difference is render_scene.block_difference's: 8x8 blocks of lit pixels, mean |EEVEE - Cycles| / Cycles of their
 luminance (blocks average away the Cycles reference's noise), the reference with direct light only (EEVEE bounces
 none without baked light probes).
 
-    tests/blender/run.sh --gl ~/.cache/probelights/bpy-4.5.15/bin/python scripts/bench_eevee_table.py \\
+    tests/blender/run.sh --gl ~/.cache/probelights/bpy-4.5.15/bin/python bench/bench_eevee_table.py \\
         build/probe_lights-0.1.0-linux_x64.zip ../shared [EEVEE_SAMPLES]
 
 (the Cycles reference takes 8 times as many samples)
@@ -18,7 +18,7 @@ import sys
 import bpy
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "tests", "blender"))
+sys.path.insert(0, os.path.join(HERE, "..", "harness"))
 import harness  # noqa: E402
 import render_scene  # noqa: E402
 

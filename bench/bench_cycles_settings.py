@@ -4,7 +4,7 @@ Cycles' default indirect clamp and with the settings the add-on offers (clamp 0,
 Prints the mean brightness of the lit pixels relative to the world's and the 8x8-block difference. The figures the
 panel quotes (cycles_settings.py) come from here:
 
-    tests/blender/run.sh blender scripts/bench_cycles_settings.py build/probe_lights-0.1.0-linux_x64.zip ../shared [PROBE] [SAMPLES]
+    tests/blender/run.sh blender bench/bench_cycles_settings.py build/probe_lights-0.1.0-linux_x64.zip ../shared [PROBE] [SAMPLES]
 """
 import os
 import sys
@@ -13,7 +13,7 @@ import bpy
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "tests", "blender"))
+sys.path.insert(0, os.path.join(HERE, "..", "harness"))
 import harness  # noqa: E402
 import render_scene  # noqa: E402
 

@@ -1,4 +1,4 @@
-"""Shared by the Blender background tests: install the add-on from its zip into a fresh profile (as a new user
+"""Drives Blender for the tests (tests/blender/) and the benchmarks (bench/): install the add-on from its zip into a fresh profile (as a new user
 would), build test worlds, and a tiny runner that prints one line per test and 'N passed, N failed'.
 
 Run a test file alone, in Debian's Blender or in a bpy module's Python (scripts/bpy-env.sh makes one):
@@ -35,11 +35,11 @@ def args():
 ADDON = "probe_lights"  # the add-on's module name once installed (install_addon sets it)
 
 
-BUNDLED_PROBE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "assets", "noon_grass_1k.hdr")
+BUNDLED_PROBE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "assets", "noon_grass_1k.hdr")
 
 
 def bench_args(samples=256):
-    """The arguments of the scripts/bench_*.py scripts: the zip, then optionally a probe and a sample count."""
+    """The arguments of the bench/bench_*.py scripts: the zip, then optionally a probe and a sample count."""
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
     zip_path = argv[argv.index("--zip") + 1]
     rest = [a for i, a in enumerate(argv) if not a.startswith("--") and (i == 0 or not argv[i - 1].startswith("--"))]

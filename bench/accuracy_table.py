@@ -3,7 +3,7 @@
 lights with and without the irradiance refit, through `probelights tradeoff`; prints a Markdown table of the best
 (lowest diffuse error) per probe and count, and writes the plot of the bundled probe to docs/.
 
-    python3 scripts/accuracy_table.py            (after scripts/build.sh)
+    python3 bench/accuracy_table.py            (after scripts/build.sh)
 """
 import glob
 import json

@@ -2,9 +2,9 @@
 render_scene.ground_under_sphere) rendered by Cycles lit by the world and by 16 and 64 baked suns, for each
 shadow choice (Hard: points; Region spread: the angle before issue 9; Fitted; Fitted with the refit): the rendered
 relative RMS difference beside the add-on's estimate of it, the renders' noise, and the difference with both
-renders' noise taken out (docs/shadows.md; for every probe: scripts/bench_shadow_table.sh).
+renders' noise taken out (docs/shadows.md; for every probe: bench/bench_shadow_table.sh).
 
-    tests/blender/run.sh ~/.cache/probelights/bpy-4.5.15/bin/python scripts/bench_shadow_estimate.py \\
+    tests/blender/run.sh ~/.cache/probelights/bpy-4.5.15/bin/python bench/bench_shadow_estimate.py \\
         build/probe_lights-0.1.0-linux_x64.zip ../shared [PROBE] [SAMPLES]
 
 PROBELIGHTS_METHOD=both bakes with that method (default: the panel's default, auto).
@@ -15,7 +15,7 @@ import sys
 import bpy
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "tests", "blender"))
+sys.path.insert(0, os.path.join(HERE, "..", "harness"))
 import harness  # noqa: E402
 import render_scene  # noqa: E402
 

@@ -4,9 +4,9 @@ truth at the points (signed pixels, and with negatives read as 0), then bakes wi
 compares the lamps' render with the sun model the estimate uses (a uniform cone in 4.0+, a disc of radius
 tan(angle / 2) in 3.x; numerically integrated here, independent of the core):
 
-  tests/blender/run.sh blender scripts/render_vs_model.py build/probe_lights-0.1.0-linux_x64.zip ../shared
+  tests/blender/run.sh blender bench/render_vs_model.py build/probe_lights-0.1.0-linux_x64.zip ../shared
   PROBE=../shared/hdri/pmndrs_esplanade_dwab.exr N=16 SPP=4096 tests/blender/run.sh \\
-      ~/.cache/probelights/bpy-4.5.15/bin/python scripts/render_vs_model.py build/probe_lights-0.1.0-linux_x64.zip ../shared
+      ~/.cache/probelights/bpy-4.5.15/bin/python bench/render_vs_model.py build/probe_lights-0.1.0-linux_x64.zip ../shared
 """
 import math
 import os
@@ -16,7 +16,7 @@ import bpy
 import mathutils
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests", "blender"))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "harness"))
 import harness  # noqa: E402
 import render_scene  # noqa: E402
 

@@ -1,6 +1,6 @@
-"""The before/after shadow table of docs/shadows.md from scripts/bench_shadow_table.sh's output (one file per Blender):
+"""The before/after shadow table of docs/shadows.md from bench/bench_shadow_table.sh's output (one file per Blender):
 
-    python3 scripts/shadow_table.py table45.txt table34.txt
+    python3 bench/shadow_table.py table45.txt table34.txt
 
 One row per probe and Blender: the world-lit render's noise, then for 16 and 64 suns the rendered relative RMS
 difference to the world-lit render for each Shadows choice (Hard; Region spread, the angle before issue 9; Fitted;

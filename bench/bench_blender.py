@@ -5,8 +5,8 @@ pixels, bake with the estimate, make the lamps); PROBELIGHTS_BENCH_REFIT=1 times
   oiiotool assets/noon_grass_1k.hdr --resize 2048x1024 -o /tmp/noon_2k.exr
   oiiotool assets/noon_grass_1k.hdr --resize 4096x2048 -o /tmp/noon_4k.exr
   oiiotool assets/noon_grass_1k.hdr --resize 8192x4096 -d half -o /tmp/noon_8k.exr
-  tests/blender/run.sh blender scripts/bench_blender.py build/probe_lights-0.1.0-linux_x64.zip ../shared
-  tests/blender/run.sh ~/.cache/probelights/bpy-5.2.3/bin/python scripts/bench_blender.py build/probe_lights-0.1.0-linux_x64.zip ../shared
+  tests/blender/run.sh blender bench/bench_blender.py build/probe_lights-0.1.0-linux_x64.zip ../shared
+  tests/blender/run.sh ~/.cache/probelights/bpy-5.2.3/bin/python bench/bench_blender.py build/probe_lights-0.1.0-linux_x64.zip ../shared
 
 PROBELIGHTS_BENCH_PROBES=/tmp/noon_8k.exr times those probes alone (paths joined by ':'), so the first click is a
 session's first: nothing baked before it in the process. Each image is loaded, then left a second before its first
@@ -19,7 +19,7 @@ import time
 
 import bpy
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests", "blender"))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "harness"))
 import harness  # noqa: E402
 
 harness.install_addon(harness.args().zip)

@@ -1,5 +1,5 @@
 """The diffuse sphere-over-plane scene the render comparisons use, rendered with Cycles, and how two renders are
-compared (8x8-pixel block means of the lit pixels). Shared by test_render.py and scripts/bench_render_counts.py."""
+compared (8x8-pixel block means of the lit pixels). Shared by test_render.py and bench/bench_render_counts.py."""
 
 import math
 import os

@@ -7,7 +7,7 @@
 #   the library       probelights bake DIR --out-dir OUT --lights 64, the whole process (start-up included),
 #                     and inside it (summary.json's seconds: from the first load to the last result written)
 #   the process start probelights --help, the whole process (OpenImageIO's libraries loaded and bound)
-# Run on an idle machine:  bash scripts/bench_library.sh [build/bin]
+# Run on an idle machine:  bash bench/bench_library.sh [build/bin]
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
 bin="${1:-$here/build/bin}"
