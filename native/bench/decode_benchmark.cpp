@@ -29,7 +29,7 @@
 #include <vector>
 
 #include "probelights/batch.h"
-#include "probelights/image.h"
+#include "probelights/image_file.h"
 
 namespace {
 

@@ -17,6 +17,7 @@
 #include <utility>
 
 #include "probelights/accuracy.h"
+#include "probelights/image_file.h"
 
 namespace {
 
@@ -37,7 +38,7 @@ Click& click(int lights) {
   static std::map<int, Click> cache;
   auto it = cache.find(lights);
   if (it != cache.end()) return it->second;
-  Click& c = cache.try_emplace(lights, Probe::load(PROBELIGHTS_BUNDLED_PROBE)).first->second;
+  Click& c = cache.try_emplace(lights, loadProbe(PROBELIGHTS_BUNDLED_PROBE)).first->second;
   c.options.lights = lights;
   c.options.centroid = CentroidWeight::Energy2;
   c.grid.emplace(c.probe, c.options);
@@ -49,7 +50,7 @@ Click& click(int lights) {
 // The bundled probe, each pixel repeated 8 x 8, as Blender hands an 8K RGBA world image to the add-on.
 const std::vector<float>& blender8K() {
   static const std::vector<float> pixels = [] {
-    const Probe small = Probe::load(PROBELIGHTS_BUNDLED_PROBE);
+    const Probe small = loadProbe(PROBELIGHTS_BUNDLED_PROBE);
     const int W = 8 * small.width(), H = 8 * small.height();
     std::vector<float> p(static_cast<std::size_t>(W) * H * 4);
     for (int y = 0; y < H; ++y)

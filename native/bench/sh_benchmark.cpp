@@ -11,6 +11,7 @@
 #include <map>
 #include <random>
 
+#include "probelights/image_file.h"
 #include "probelights/sh_sampler.h"
 #include "probelights/sh_variance.h"
 #include "probelights/spherical_harmonics.h"
@@ -25,7 +26,7 @@ const char* kProbes[] = {PROBELIGHTS_BUNDLED_PROBE, PROBELIGHTS_SHARED_HDRI "/Ke
 const Probe& probe(int i) {
   static std::map<int, Probe> cache;
   auto it = cache.find(i);
-  if (it == cache.end()) it = cache.emplace(i, Probe::load(kProbes[i])).first;
+  if (it == cache.end()) it = cache.emplace(i, loadProbe(kProbes[i])).first;
   return it->second;
 }
 

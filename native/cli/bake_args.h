@@ -5,8 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "probelights/accuracy.h"
-#include "probelights/probe.h"
+#include "probelights/request.h"
 
 namespace probelights::cli {
 
@@ -15,15 +14,12 @@ struct BakeArgs {
   std::vector<std::string> probes;     // a library: files, directories, globs
   std::string outDir;
   bool previews = false;
-  ProbeOptions probeOptions;
-  BakeOptions bake;
-  AccuracyOptions accuracy;
+  BakeRequest request;  // the bake (request.h); keepPixels when a preview is asked for
   bool quiet = false;
 };
 
-// Whether the bake needs nothing of the probe but its working grid (bakesOnGridAlone, and no preview): then
-// the probe is read band by band straight into the grid (grid_load.h) and never held whole.
-bool bakesFromGridAlone(const BakeArgs& a);
+// The bake options' lines of the usage text, from request.h's table (names, values, defaults, help).
+std::string bakeOptionsUsage();
 
 // Bakes every probe into a.outDir: <name>.json (and <name>.png) each, and summary.json. Returns 0 when all
 // were baked, 3 when some failed (each said on one line; the others are baked).

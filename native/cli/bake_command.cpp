@@ -8,10 +8,9 @@
 #include "commands.h"
 #include "json_output.h"
 #include "options.h"
-#include "probelights/accuracy.h"
 #include "probelights/bake.h"
+#include "probelights/bake_file.h"
 #include "probelights/evaluate.h"
-#include "probelights/grid_load.h"
 #include "probelights/preview.h"
 #include "probelights/stopwatch.h"
 #include "write_whole.h"
@@ -22,42 +21,34 @@ namespace {
 
 BakeArgs parseBakeArgs(const std::vector<std::string>& argv) {
   BakeArgs a;
-  BakeOptions& b = a.bake;
-  AccuracyOptions& acc = a.accuracy;
-  std::vector<Option> table{
-      {{"--method"}, [&](const std::string& v) { b.method = parseMethod(v); }},
-      {{"--lights", "-n"}, [&](const std::string& v) { b.lights = parseCount("--lights", v); }},
-      {{"--centroid"}, [&](const std::string& v) { b.centroid = parseCentroid(v); }},
-      {{"--resolution"}, [&](const std::string& v) { b.resolution = WorkingResolution::parse(v); }},
-      {{"--bands"}, [&](const std::string& v) { b.shBands = parseCount("--bands", v); }},
-      {{"--epsilon"}, [&](const std::string& v) { b.shEpsilon = parseReal("--epsilon", v); }},
-      {{"--horizon"},
-       [&](const std::string& v) {
-         if (v != "on" && v != "off") throw UsageError("--horizon takes on or off, got '" + v + "'");
-         b.splitAtHorizon = v == "on";
-       }},
-      {{"-o", "--output"}, [&](const std::string& v) { a.output = nonEmpty("-o", v); }},
-      {{"--preview"}, [&](const std::string& v) { a.preview = nonEmpty("--preview", v); }},
-      {{"--out-dir"}, [&](const std::string& v) { a.outDir = nonEmpty("--out-dir", v); }},
-      flag({"--previews"}, [&] { a.previews = true; }),
-      {{"--max-error"},
-       [&](const std::string& v) {
-         acc.maxError = parseTolerance("--max-error", v);
-         if (!(acc.maxError > 0 && acc.maxError < 1))
-           throw UsageError("--max-error takes an error between 0 and 100% (e.g. 1%), got '" + v + "'");
-       }},
-      {{"--effects"}, [&](const std::string& v) { acc.effects = parseEffects(v); }},
-      {{"--sun-angles"}, [&](const std::string& v) { acc.sunAngles = parseSunAngles(v); }},
-      {{"--sun-profile"}, [&](const std::string& v) { acc.sunProfile = parseSunProfile(v); }},
-      flag({"-q", "--quiet"}, [&] { a.quiet = true; }),
-      flag({"--refit"}, [&] { acc.refit = true; }),
-      flag({"--refit-directions"}, [&] { acc.refit = acc.moveDirections = true; }),
-      flag({"--evaluate"}, [&] { acc.evaluate = true; }),
-      {{"--cuts"}, [&](const std::string& v) { acc.cuts = parseCutChoice(v); }},
-      flag({"--both-cuts"}, [&] { acc.cuts = CutChoice::Both; }),
-  };
-  addProbeOptions(table, a.probeOptions);
+  // The bake's options, from the table the module shares (request.h), then the command's own.
+  std::vector<Option> table;
+  for (const RequestOption& o : requestOptions()) {
+    if (o.name == "max_error") continue;  // below: the command line refuses 0, a tolerance that asks nothing
+    std::vector<std::string> names{o.cliName()};
+    if (o.name == "lights") names.push_back("-n");
+    if (o.isSwitch())
+      table.push_back(flag(names, [&a, &o] { o.set(a.request, o.cliName(), "true"); }));
+    else
+      table.push_back({names, [&a, &o](const std::string& v) { o.set(a.request, o.cliName(), v); }});
+  }
+  bool maxError = false;
+  table.push_back({{"--max-error"}, [&](const std::string& v) {
+                     requestOption("max_error").set(a.request, "--max-error", v);
+                     maxError = true;
+                   }});
+  table.push_back(flag({"--both-cuts"}, [&] { a.request.accuracy.cuts = CutChoice::Both; }));
+  table.push_back({{"--projection"},
+                   [&](const std::string& v) { a.request.probe.projection = parseProjectionChoice(v); }});
+  table.push_back({{"-o", "--output"}, [&](const std::string& v) { a.output = nonEmpty("-o", v); }});
+  table.push_back({{"--preview"}, [&](const std::string& v) { a.preview = nonEmpty("--preview", v); }});
+  table.push_back({{"--out-dir"}, [&](const std::string& v) { a.outDir = nonEmpty("--out-dir", v); }});
+  table.push_back(flag({"--previews"}, [&] { a.previews = true; }));
+  table.push_back(flag({"-q", "--quiet"}, [&] { a.quiet = true; }));
   const std::vector<std::string> probes = parseOptions(argv, table);
+  if (maxError && a.request.accuracy.maxError == 0)
+    throw UsageError("--max-error takes an error above 0 (e.g. 1% or 0.01); leave it out to choose --lights");
+  a.request.keepPixels = !a.preview.empty() || a.previews;
   if (a.outDir.empty()) {
     if (a.previews)
       throw UsageError("--previews goes with --out-dir (a library bake); one probe takes --preview FILE");
@@ -120,28 +111,48 @@ void printSummary(const BakeArgs& a, const Probe& probe, const EvaluatedBake& ev
 
 }  // namespace
 
-bool bakesFromGridAlone(const BakeArgs& a) {
-  return bakesOnGridAlone(a.bake, a.accuracy) && a.preview.empty() && !a.previews;
+std::string bakeOptionsUsage() {
+  // "  --name VALUES" in a column of 36, then what it does and its default, wrapped at 110 columns.
+  std::string out;
+  const BakeRequest defaults;
+  for (const RequestOption& o : requestOptions()) {
+    std::string head =
+        "  " + o.cliName() + (o.name == "lights" ? ", -n" : "") + (o.isSwitch() ? "" : " " + o.values);
+    std::string text = o.help;
+    if (!o.isSwitch()) text += " (default " + o.get(defaults) + ")";
+    if (head.size() >= 36) out += head + "\n", head.clear();
+    head.resize(36, ' ');
+    std::string line = head;
+    std::size_t at = 0;
+    while (at < text.size()) {
+      std::size_t take = std::min<std::size_t>(110 - 36, text.size() - at);
+      if (at + take < text.size()) {
+        const std::size_t space = text.rfind(' ', at + take);
+        if (space != std::string::npos && space > at) take = space - at;
+      }
+      line += text.substr(at, take);
+      out += line + "\n";
+      at += take;
+      while (at < text.size() && text[at] == ' ') ++at;
+      line.assign(36, ' ');
+    }
+  }
+  return out;
 }
 
 int bakeCommand(const std::vector<std::string>& argv) {
   BakeArgs a = parseBakeArgs(argv);
   if (!a.outDir.empty()) return bakeLibrary(a);
-  Stopwatch load;
-  std::optional<GridProbe> grid;
-  if (bakesFromGridAlone(a)) grid.emplace(loadGrid(a.probe, a.probeOptions, a.bake));
-  const Probe probe = grid ? std::move(grid->probe) : Probe::load(a.probe, a.probeOptions);
-  const double loadMs = load.ms();
-  const EvaluatedBake done =
-      grid ? bakeOnGrid(probe, grid->table, grid->tablesMs, a.bake, a.accuracy.sunAngles)
-           : bakeEvaluated(probe, a.bake, a.accuracy);
+  const BakedFile baked = bakeFile(a.probe, a.request);
+  const Probe& probe = *baked.probe;
+  const EvaluatedBake& done = *baked.result;
   if (!a.output.empty()) {
-    writeJson(bakeToJson({a.probe, probe, a.bake, done, loadMs}), a.output, 2);
+    writeJson(bakeToJson({a.probe, probe, a.request.bake, done, baked.loadMs}), a.output, 2);
     if (a.output == "-") a.quiet = true;
   }
   if (!a.preview.empty())
     writeImageWhole(a.preview, [&](const std::string& tmp) { writePreview(probe, done.bake, tmp); });
-  if (!a.quiet) printSummary(a, probe, done, loadMs);
+  if (!a.quiet) printSummary(a, probe, done, baked.loadMs);
   return 0;
 }
 

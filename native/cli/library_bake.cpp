@@ -18,6 +18,7 @@
 #include "bake_args.h"
 #include "json_output.h"
 #include "options.h"
+#include "probelights/bake_file.h"
 #include "probelights/batch.h"
 #include "probelights/preview.h"
 #include "probelights/stopwatch.h"
@@ -147,30 +148,25 @@ int bakeLibrary(const BakeArgs& a) {
   int done = 0, failed = 0;
   nlohmann::json entries = nlohmann::json::array();
   std::size_t index = 0;
-  const bool gridOnly = bakesFromGridAlone(a);
-  auto bakeOne = [&](LoadedProbe& item) -> bool {
+  auto bakeOne = [&](BakedFile& item) -> bool {
     const std::string& name = names[index++];
     nlohmann::json entry{{"probe", item.path}, {"load_ms", item.loadMs}};
     loadMs += item.loadMs;
     std::string error = item.error;
-    if (item.probe) {
+    if (item.result) {
       try {
-        Stopwatch clock;
-        const EvaluatedBake result =
-            item.table ? bakeOnGrid(*item.probe, *item.table, item.tablesMs, a.bake, a.accuracy.sunAngles)
-                       : bakeEvaluated(*item.probe, a.bake, a.accuracy);
-        const double ms = clock.ms();
-        bakeMs += ms;
+        const EvaluatedBake& result = *item.result;
+        bakeMs += item.bakeMs;
         if (a.previews) {
           writeImageWhole((dir / (name + ".png")).string(),
                           [&](const std::string& tmp) { writePreview(*item.probe, result.bake, tmp); });
           entry["preview"] = name + ".png";
         }
         writeWhole((dir / (name + ".json")).string(),
-                   dumpJson(bakeToJson({item.path, *item.probe, a.bake, result, item.loadMs}), 2));
+                   dumpJson(bakeToJson({item.path, *item.probe, a.request.bake, result, item.loadMs}), 2));
         entry["output"] = name + ".json";
         entry["lights"] = result.bake.lights.size();
-        entry["bake_ms"] = ms;
+        entry["bake_ms"] = item.bakeMs;
         if (result.evaluated) entry["worst_error"] = result.errors.worst(result.effects);
       } catch (const std::exception& e) {
         error = e.what();
@@ -193,7 +189,7 @@ int bakeLibrary(const BakeArgs& a) {
     }
     return !stopped && !interrupted;
   };
-  forEachProbe(paths, a.probeOptions, bakeOne, gridOnly ? &a.bake : nullptr);
+  bakeFiles(paths, a.request, bakeOne);
   if (terminal) std::fputs("\r\033[K", messages());
   const double seconds = wall.ms() / 1000.0;
   const int skipped = static_cast<int>(paths.size()) - done;

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "bake_args.h"
 #include "commands.h"
 #include "options.h"
 #include "write_whole.h"
@@ -28,40 +29,24 @@ phase, theta from +Z) of the radiance, or with --irradiance of the irradiance. s
 from the SH importance sampler (Jarosz et al. 2009 warping with Berger's epsilon clamping) of the probe's
 luminance.
 
-options:
-  --method median-cut|variance|sh   partition algorithm (default variance); sh = SH importance warping
-  --bands B, --epsilon E            sh: SH bands (default 8) and Berger's epsilon (default 0.01)
-  --lights N                        number of lights, N >= 1 (default 16)
+options (bake):
+)";
+
+// The command's own options, after the bake's (bakeOptionsUsage: the table the module shares).
+const char* kUsageOwn =
+    R"(  --both-cuts                       --cuts both
   --projection auto|latlong|mirror-ball|angular
                                     how the image maps to the sphere (default auto: lat-long for 2:1 images)
-  --centroid energy|energy2         weight that places a light in its region (default energy)
-  --resolution full|auto|WIDTH      working resolution the cuts are decided on (default auto: full up to
-                                    2048 px wide); lights are always summed at full resolution
-  --horizon on|off                  lat-long: first cut at the horizon so no light mixes sky and ground
-                                    (default off: the papers' algorithms exactly)
-  --nonfinite error|zero            NaN/Inf pixels: refuse the probe (default) or read them as 0
   -o, --output FILE                 write the lights as JSON ('-' for standard output)
+  --preview FILE                    write a picture of the regions and lights (PNG)
   --out-dir DIR                     bake many probes (files, folders, quoted globs) into DIR: a JSON each and
                                     summary.json; the next loads while one bakes; exit 3 if some failed
   --previews                        with --out-dir: a preview PNG per probe too
-  --preview FILE                    write a picture of the regions and lights (PNG)
-  --refit                           re-solve the lights' colours (non-negative least squares) so their
-                                    diffuse irradiance matches the probe's; reports the energy shift
-  --refit-directions                the refit also moves the lights' directions (lower error at few lights)
-  --max-error E                     the fewest lights whose error is at most E (e.g. 1% or 0.01) on --effects
-  --effects diffuse,shadow,glossy   effects to evaluate (default diffuse); evaluating prints their errors
-  --evaluate                        evaluate the lights on --effects without choosing the count
-  --cuts one|both|auto              one: the --method's cut (default); both: variance and median cut each
-                                    made ready (--refit...), the lights that fit the probe better kept (a
-                                    second fit); auto: both up to 16 lights, above both started and the
-                                    better finished alone (--both-cuts = --cuts both)
-  --sun-angles fit|spread|points    the lights' cone angles: fitted to the probe's shadows when shadows are
-                                    evaluated (default), from each region's spread, or 0 (hard shadows)
-  --sun-profile cone|disc           the renderer's sun: a uniform cone (Cycles 4.0+, default) or a disc of
-                                    radius tan(angle / 2) (Cycles 3.x)
   -q, --quiet                       no summary on standard output
   (sh, sample: --projection and --nonfinite as above; JSON goes to -o FILE or standard output)
 )";
+
+std::string usage() { return std::string(kUsage) + bakeOptionsUsage() + kUsageOwn; }
 
 }  // namespace
 
@@ -75,7 +60,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
-      std::fputs(kUsage, args.empty() ? messages() : stdout);
+      std::fputs(usage().c_str(), args.empty() ? messages() : stdout);
       return args.empty() ? 2 : 0;
     }
     const std::map<std::string, int (*)(const std::vector<std::string>&)> commands{
@@ -83,7 +68,7 @@ int main(int argc, char** argv) {
     if (auto command = commands.find(args[0]); command != commands.end()) {
       std::vector<std::string> rest(args.begin() + 1, args.end());
       for (const auto& s : rest)
-        if (s == "--help" || s == "-h") return std::fputs(kUsage, stdout), 0;
+        if (s == "--help" || s == "-h") return std::fputs(usage().c_str(), stdout), 0;
       const int code = command->second(rest);
       writeStdout("");  // what is still buffered: a full disk or closed pipe behind stdout is an error
       return code;

@@ -86,32 +86,6 @@ void refuseOverwritingProbe(const std::string& probe, const std::vector<std::str
   }
 }
 
-double parseReal(const std::string& flag, const std::string& text) {
-  try {
-    std::size_t used = 0;
-    double v = std::stod(text, &used);
-    if (used == text.size() && std::isfinite(v)) return v;
-  } catch (const std::exception&) {
-  }
-  throw UsageError(flag + " expects a number, got '" + text + "'");
-}
-
-int parseCount(const std::string& flag, const std::string& text) {
-  try {
-    std::size_t used = 0;
-    long long n = std::stoll(text, &used);
-    if (used == text.size() && n >= -1000000000LL && n <= 1000000000LL) return static_cast<int>(n);
-  } catch (const std::exception&) {
-  }
-  throw UsageError(flag + " expects a whole number, got '" + text + "'");
-}
-
-double parseTolerance(const std::string& flag, const std::string& text) {
-  const bool percent = !text.empty() && text.back() == '%';
-  double v = parseReal(flag, percent ? text.substr(0, text.size() - 1) : text);
-  return percent ? v / 100 : v;
-}
-
 std::vector<std::string> splitList(const std::string& text) {
   std::vector<std::string> items;
   std::stringstream ss(text);

@@ -9,6 +9,7 @@
 
 #include "probelights/error.h"
 #include "probelights/probe.h"
+#include "probelights/request.h"
 
 namespace probelights::cli {
 
@@ -51,10 +52,8 @@ std::string nonEmpty(const std::string& flag, const std::string& value);
 // Refuses outputs that name the probe being read (or each other): a command never writes over its input.
 void refuseOverwritingProbe(const std::string& probe, const std::vector<std::string>& outputs);
 
-double parseReal(const std::string& flag, const std::string& text);
-int parseCount(const std::string& flag, const std::string& text);
-double parseTolerance(const std::string& flag, const std::string& text);  // "1%" or "0.01"
-std::vector<std::string> splitList(const std::string& text);              // "a,b,c"
+// Numbers: parseReal, parseCount and parseTolerance of request.h.
+std::vector<std::string> splitList(const std::string& text);  // "a,b,c"
 
 // JSON as text: indented by `indent` (-1: compact), ending in a newline; a string that is not UTF-8 (a file
 // name's bytes) has U+FFFD in place of its bad bytes.

@@ -3,6 +3,7 @@
 #include "commands.h"
 #include "json_output.h"
 #include "options.h"
+#include "probelights/image_file.h"
 #include "probelights/sh_sampler.h"
 #include "probelights/spherical_harmonics.h"
 
@@ -55,7 +56,7 @@ ShArgs parseShArgs(const std::vector<std::string>& argv, bool sampling) {
 
 int shCommand(const std::vector<std::string>& argv) {
   ShArgs a = parseShArgs(argv, false);
-  Probe probe = Probe::load(a.probe, a.probeOptions);
+  Probe probe = loadProbe(a.probe, a.probeOptions);
   ShCoefficients sh = projectProbe(probe, a.bands);
   applyWindow(sh, a.window);
   if (a.irradiance) sh = irradianceCoefficients(sh);
@@ -73,7 +74,7 @@ int shCommand(const std::vector<std::string>& argv) {
 
 int sampleCommand(const std::vector<std::string>& argv) {
   ShArgs a = parseShArgs(argv, true);
-  Probe probe = Probe::load(a.probe, a.probeOptions);
+  Probe probe = loadProbe(a.probe, a.probeOptions);
   ShSampler sampler(a.bands, projectProbe(probe, a.bands).luminance(), a.epsilon, a.depth);
   nlohmann::json dirs = nlohmann::json::array(), pdfs = nlohmann::json::array();
   for (const auto& s : sampler.sampleSeeded(a.samples, a.seed)) {

@@ -6,6 +6,7 @@
 #include "json_output.h"
 #include "options.h"
 #include "probelights/evaluate.h"
+#include "probelights/image_file.h"
 #include "probelights/stopwatch.h"
 #include "probelights/tradeoff.h"
 #include "tradeoff_plot.h"
@@ -39,7 +40,7 @@ int tradeoffCommand(const std::vector<std::string>& argv) {
   refuseOverwritingProbe(probePath, {output, plot});
 
   Stopwatch truth;
-  Probe probe = Probe::load(probePath, probeOptions);
+  Probe probe = loadProbe(probePath, probeOptions);
   Evaluator evaluator(probe, effects, EvaluatorOptions{2048, options.refit});
   const double truthMs = truth.ms();
   auto rows = tradeoff(probe, evaluator, options);

@@ -7,41 +7,28 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include <tuple>
+#include <string>
 
 #include "probelights/bake.h"
 #if PROBELIGHTS_MODULE_IO
+#include "probelights/bake_file.h"
 #include "probelights/batch.h"
-#include "probelights/grid_load.h"
 #endif
 #include "probelights/error.h"
 #include "probelights/evaluate.h"
 #include "probelights/memory.h"
 #include "probelights/probe.h"
 #include "probelights/refit.h"
+#include "probelights/request.h"
 #include "probelights/result_layout.h"
 #include "probelights/sh_sampler.h"
 #include "probelights/spherical_harmonics.h"
-#include "probelights/stopwatch.h"
 #include "probelights/tradeoff.h"
 
 namespace py = pybind11;
 using namespace probelights;
 
 namespace {
-
-BakeOptions bakeOptions(const std::string& method, int lights, const std::string& centroid,
-                        const std::string& resolution, bool horizon, int bands = 8, double epsilon = 0.01) {
-  BakeOptions o;
-  o.splitAtHorizon = horizon;
-  o.shBands = bands;
-  o.shEpsilon = epsilon;
-  o.method = parseMethod(method);
-  o.lights = lights;
-  o.centroid = parseCentroid(centroid);
-  o.resolution = WorkingResolution::parse(resolution);
-  return o;
-}
 
 // Text for Python: UTF-8, or as os.fsdecode has bytes that are not (a file name's; surrogates, so that the
 // str names the same file again) rather than a UnicodeDecodeError that loses the result.
@@ -151,92 +138,72 @@ ImageView viewOf(Pixels& pixels) {
                    pixels.strides(1) / static_cast<py::ssize_t>(sizeof(float))};
 }
 
-AccuracyOptions accuracyOptions(const std::string& effects, bool evaluate, bool refit, double maxError,
-                                int evaluatorWidth, bool moveDirections, const std::string& sunAngles,
-                                const std::string& sunProfile, const std::string& cuts = "one") {
-  AccuracyOptions a;
-  a.effects = parseEffects(effects), a.evaluate = evaluate, a.refit = refit || moveDirections;
-  if (!(maxError >= 0 && maxError < 1))
-    throw Error("max_error takes an error between 0 and 1 (0: off), got " + std::to_string(maxError));
-  a.maxError = maxError, a.evaluatorWidth = evaluatorWidth, a.moveDirections = moveDirections;
-  a.sunAngles = parseSunAngles(sunAngles), a.sunProfile = parseSunProfile(sunProfile);
-  a.cuts = parseCutChoice(cuts);
-  return a;
+// A keyword's value as its option's text (request.h): a switch from a bool, a number as Python writes it (its
+// repr reads back as the same double), a word as it is.
+std::string optionText(const std::string& name, const py::handle& value) {
+  if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "true" : "false";
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (py::hasattr(value, "__index__")) return py::str(py::int_(py::reinterpret_borrow<py::object>(value)));
+  if (py::isinstance<py::float_>(value) || py::hasattr(value, "__float__"))
+    return py::repr(py::float_(py::reinterpret_borrow<py::object>(value)));
+  throw Error(name + " takes " +
+              (requestOption(name).isSwitch() ? "True or False" : requestOption(name).values) + ", got a " +
+              py::str(py::type::handle_of(value).attr("__name__")).cast<std::string>());
 }
 
-py::dict bakePixels(Pixels pixels, const std::string& projection, const std::string& method, int lights,
-                    const std::string& centroid, const std::string& resolution, bool horizon, int bands,
-                    double epsilon, const std::string& effects, bool evaluate, bool refit,
-                    bool moveDirections, double maxError, int evaluatorWidth, const std::string& sunAngles,
-                    const std::string& sunProfile, const std::string& nonfinite, const std::string& cuts) {
+// The request the keywords ask for, every other option at its default (request.h: one table for the module
+// and the CLI). Options are applied in the table's order, whatever the keywords' order.
+BakeRequest requestFrom(const py::kwargs& kwargs) {
+  for (const auto& item : kwargs) {
+    const std::string key = item.first.cast<std::string>();
+    bool known = false;
+    for (const RequestOption& o : requestOptions()) known = known || o.name == key;
+    if (!known) {
+      std::string names;
+      for (const RequestOption& o : requestOptions()) names += (names.empty() ? "" : ", ") + o.name;
+      throw Error("unknown option '" + key + "': the options are projection, " + names);
+    }
+  }
+  BakeRequest request;
+  for (const RequestOption& o : requestOptions())
+    if (kwargs.contains(o.name.c_str())) o.set(request, o.name, optionText(o.name, kwargs[o.name.c_str()]));
+  return request;
+}
+
+py::dict bakePixels(Pixels pixels, const std::string& projection, const py::kwargs& options) {
   const ImageView view = viewOf(pixels);
   const auto kind = parseProjection(projection);
-  const BakeOptions options = bakeOptions(method, lights, centroid, resolution, horizon, bands, epsilon);
-  const NonFinitePolicy policy = parseNonFinitePolicy(nonfinite);
-  const AccuracyOptions accuracy = accuracyOptions(effects, evaluate, refit, maxError, evaluatorWidth,
-                                                   moveDirections, sunAngles, sunProfile, cuts);
+  const BakeRequest request = requestFrom(options);
   std::optional<Probe> probe;
   EvaluatedBake result;
   {
     py::gil_scoped_release release;
-    result = bakeBuffer(view, kind, policy, options, accuracy, probe);
+    result = bakeBuffer(view, kind, request, probe);
   }
-  return toDict("", *probe, options, result);
+  return toDict("", *probe, request.bake, result);
 }
 
 #if PROBELIGHTS_MODULE_IO
-// What bake_file and bake_files are asked for: how to read the probes, and the bake.
-std::tuple<ProbeOptions, BakeOptions, AccuracyOptions> fileRequest(
-    const std::string& projection, const std::string& method, int lights, const std::string& centroid,
-    const std::string& resolution, bool horizon, int bands, double epsilon, const std::string& effects,
-    bool evaluate, bool refit, bool moveDirections, double maxError, int evaluatorWidth,
-    const std::string& sunAngles, const std::string& sunProfile, const std::string& nonfinite,
-    const std::string& cuts) {
-  ProbeOptions probe;
-  probe.projection = parseProjectionChoice(projection);
-  probe.nonFinite = parseNonFinitePolicy(nonfinite);
-  return {probe, bakeOptions(method, lights, centroid, resolution, horizon, bands, epsilon),
-          accuracyOptions(effects, evaluate, refit, maxError, evaluatorWidth, moveDirections, sunAngles,
-                          sunProfile, cuts)};
+BakeRequest fileRequest(const std::string& projection, const py::kwargs& options) {
+  BakeRequest request = requestFrom(options);
+  request.probe.projection = parseProjectionChoice(projection);
+  return request;
 }
 
-py::dict bakeFile(const py::object& pathObject, const std::string& projection, const std::string& method,
-                  int lights, const std::string& centroid, const std::string& resolution, bool horizon,
-                  int bands, double epsilon, const std::string& effects, bool evaluate, bool refit,
-                  bool moveDirections, double maxError, int evaluatorWidth, const std::string& sunAngles,
-                  const std::string& sunProfile, const std::string& nonfinite, const std::string& cuts) {
+py::dict pyBakeFile(const py::object& pathObject, const std::string& projection, const py::kwargs& options) {
   const std::string path = fsPath(pathObject);
-  const auto [probeOptions, options, accuracy] = fileRequest(
-      projection, method, lights, centroid, resolution, horizon, bands, epsilon, effects, evaluate, refit,
-      moveDirections, maxError, evaluatorWidth, sunAngles, sunProfile, nonfinite, cuts);
-  std::optional<Probe> probe;
-  EvaluatedBake result;
-  double loadMs = 0;
+  const BakeRequest request = fileRequest(projection, options);
+  std::optional<BakedFile> baked;
   {
     py::gil_scoped_release release;
-    Stopwatch load;
-    if (bakesOnGridAlone(options, accuracy)) {
-      // Read band by band straight into the working grid: the image is never held whole.
-      GridProbe grid = loadGrid(path, probeOptions, options);
-      probe.emplace(std::move(grid.probe));
-      loadMs = load.ms();
-      result = bakeOnGrid(*probe, grid.table, grid.tablesMs, options, accuracy.sunAngles);
-    } else {
-      probe.emplace(Probe::load(path, probeOptions));
-      loadMs = load.ms();
-      result = bakeEvaluated(*probe, options, accuracy);
-    }
+    baked.emplace(bakeFile(path, request));
   }
-  return toDict(path, *probe, options, result, loadMs);
+  return toDict(path, *baked->probe, request.bake, *baked->result, baked->loadMs);
 }
 
 // Many probes (files, directories, globs): a list with bake_file's dict per probe, or {"source": {"path"},
 // "error"} for one that failed (the others go on). The next probe loads while the current one bakes.
-py::list bakeFiles(const py::object& paths, const std::string& projection, const std::string& method,
-                   int lights, const std::string& centroid, const std::string& resolution, bool horizon,
-                   int bands, double epsilon, const std::string& effects, bool evaluate, bool refit,
-                   bool moveDirections, double maxError, int evaluatorWidth, const std::string& sunAngles,
-                   const std::string& sunProfile, const std::string& nonfinite, const std::string& cuts) {
+py::list pyBakeFiles(const py::object& paths, const std::string& projection, const py::kwargs& options) {
   // A list (any iterable) of paths; one path alone is taken as a list of one.
   std::vector<std::string> inputs;
   const py::module_ os = py::module_::import("os");
@@ -246,41 +213,44 @@ py::list bakeFiles(const py::object& paths, const std::string& projection, const
   else
     for (const py::handle p : paths) inputs.push_back(fsPath(p));
   if (inputs.empty()) throw Error("bake_files needs at least one path (a file, folder or glob)");
-  const auto [probeOptions, options, accuracy] = fileRequest(
-      projection, method, lights, centroid, resolution, horizon, bands, epsilon, effects, evaluate, refit,
-      moveDirections, maxError, evaluatorWidth, sunAngles, sunProfile, nonfinite, cuts);
+  const BakeRequest request = fileRequest(projection, options);
   py::list out;
   {
     py::gil_scoped_release release;
-    auto bakeOne = [&](LoadedProbe& item) {
-      std::string error = item.error;
-      std::optional<EvaluatedBake> result;
-      if (item.probe) {
-        try {
-          result = item.table
-                       ? bakeOnGrid(*item.probe, *item.table, item.tablesMs, options, accuracy.sunAngles)
-                       : bakeEvaluated(*item.probe, options, accuracy);
-        } catch (const std::exception& e) {
-          error = e.what();
-        }
-      }
+    bakeFiles(expandProbePaths(inputs), request, [&](BakedFile& item) {
       py::gil_scoped_acquire acquire;
-      if (result) {
-        out.append(toDict(item.path, *item.probe, options, *result, item.loadMs));
+      if (item.result) {
+        out.append(toDict(item.path, *item.probe, request.bake, *item.result, item.loadMs));
       } else {
         py::dict failed;
         failed["source"] = py::dict(py::arg("path") = fsText(item.path));
-        failed["error"] = fsText(error);
+        failed["error"] = fsText(item.error);
         out.append(failed);
       }
       return true;
-    };
-    forEachProbe(expandProbePaths(inputs), probeOptions, bakeOne,
-                 bakesOnGridAlone(options, accuracy) ? &options : nullptr);
+    });
   }
   return out;
 }
 #endif
+
+// The bake options' keywords with their defaults and what they do, from request.h's table: the docstrings
+// of bake, bake_file and bake_files end with it.
+std::string optionsDoc() {
+  std::string doc = "\n\nOptions (keyword=default):";
+  const BakeRequest defaults;
+  for (const RequestOption& o : requestOptions()) {
+    const std::string value = o.get(defaults);
+    const bool word =
+        !o.isSwitch() && (o.values.find('|') != std::string::npos || o.values.find(',') != std::string::npos);
+    const std::string shown = o.isSwitch() ? (value == "on" ? "True" : "False")
+                              : word       ? "'" + value + "'"
+                                           : value;
+    doc += "\n  " + o.name + "=" + shown + ": " + o.help +
+           (o.isSwitch() || o.values.size() < 2 ? "" : " (" + o.values + ")");
+  }
+  return doc;
+}
 
 // The tradeoff grid (tradeoff.h) in the layout of the CLI's tradeoff JSON (result_layout.h).
 py::dict tradeoffRows(Pixels pixels, const std::string& projection, const std::string& effects,
@@ -359,15 +329,6 @@ py::tuple shSample(Pixels pixels, int bands, double epsilon, int samples, int de
 
 }  // namespace
 
-// The options bake, bake_file and bake_files share (after the probe and its projection), in their order.
-#define PROBELIGHTS_BAKE_KWARGS                                                                      \
-  py::arg("method") = "variance", py::arg("lights") = 16, py::arg("centroid") = "energy",            \
-  py::arg("resolution") = "auto", py::arg("horizon") = false, py::arg("bands") = 8,                  \
-  py::arg("epsilon") = 0.01, py::arg("effects") = "diffuse", py::arg("evaluate") = false,            \
-  py::arg("refit") = false, py::arg("move_directions") = false, py::arg("max_error") = 0.0,          \
-  py::arg("evaluator_width") = 2048, py::arg("sun_angles") = "fit", py::arg("sun_profile") = "cone", \
-  py::arg("nonfinite") = "error", py::arg("cuts") = "one"
-
 PYBIND11_MODULE(_probelights, m) {
   m.doc() = "probelights: turn an HDR light probe into N lights that carry exactly its energy";
   py::register_exception<Error>(m, "Error", PyExc_ValueError);
@@ -388,22 +349,30 @@ PYBIND11_MODULE(_probelights, m) {
       "What accuracy costs in time, in the layout of the CLI's tradeoff JSON: source, effects, error, and "
       "rows: a dict of columns (method, lights, made, resolution, refit, bake_ms, each effect's error), one "
       "entry per (method, count, refit).");
+  static const std::string bakeDoc =
+      "bake(pixels, *, projection='latlong', **options): bake a probe given as a float32 H x W x C array "
+      "(rows top to bottom; not copied). Returns the layout the CLI's JSON has (result_layout.h): source, "
+      "method, ..., lights: a dict of numpy arrays (direction (N,3), rgb (N,3), solid_angle, angular_radius, "
+      "energy_share (N,), rect (N,4)), total_rgb (3,), timings_ms, notes, and evaluation (errors on "
+      "`effects`) "
+      "when evaluate/refit/max_error ask for it." +
+      optionsDoc();
   m.def("bake", &bakePixels, py::arg("pixels"), py::kw_only(), py::arg("projection") = "latlong",
-        PROBELIGHTS_BAKE_KWARGS,
-        "Bake a probe given as a float32 H x W x C array (rows top to bottom; not copied). Returns the "
-        "layout the CLI's JSON has (result_layout.h): source, method, ..., lights: a dict of numpy arrays "
-        "(direction (N,3), rgb (N,3), solid_angle, angular_radius, energy_share (N,), rect (N,4)), "
-        "total_rgb (3,), timings_ms, notes, and evaluation (errors on `effects`) when "
-        "evaluate/refit/max_error ask for it.");
+        bakeDoc.c_str());
 #if PROBELIGHTS_MODULE_IO
-  m.def("bake_file", &bakeFile, py::arg("path"), py::kw_only(), py::arg("projection") = "auto",
-        PROBELIGHTS_BAKE_KWARGS,
-        "Read a probe with OpenImageIO and bake it: the same options and dict as bake(), with source.path "
-        "and timings_ms.load set.");
-  m.def("bake_files", &bakeFiles, py::arg("paths"), py::kw_only(), py::arg("projection") = "auto",
-        PROBELIGHTS_BAKE_KWARGS,
-        "Bake many probes (files, directories, globs) in order, the next loading while one bakes: a list of "
-        "bake_file's dicts, with {'source': {'path'}, 'error'} for a probe that failed.");
+  static const std::string fileDoc =
+      "bake_file(path, *, projection='auto', **options): read a probe with OpenImageIO and bake it: the same "
+      "dict as bake(), with source.path and timings_ms.load set." +
+      optionsDoc();
+  static const std::string filesDoc =
+      "bake_files(paths, *, projection='auto', **options): bake many probes (files, directories, globs) in "
+      "order, the next loading while one bakes: a list of bake_file's dicts, with {'source': {'path'}, "
+      "'error'} for a probe that failed." +
+      optionsDoc();
+  m.def("bake_file", &pyBakeFile, py::arg("path"), py::kw_only(), py::arg("projection") = "auto",
+        fileDoc.c_str());
+  m.def("bake_files", &pyBakeFiles, py::arg("paths"), py::kw_only(), py::arg("projection") = "auto",
+        filesDoc.c_str());
 #endif
   m.def(
       "sh_project", &shProject, py::arg("pixels"), py::kw_only(), py::arg("bands"),

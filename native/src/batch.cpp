@@ -10,6 +10,7 @@
 
 #include "probelights/error.h"
 #include "probelights/grid_load.h"
+#include "probelights/image_file.h"
 #include "probelights/one_thread.h"
 #include "probelights/stopwatch.h"
 
@@ -39,7 +40,7 @@ LoadedProbe load(const std::string& path, const ProbeOptions& options, const Bak
       item.table.emplace(std::move(g.table));
       item.tablesMs = g.tablesMs;
     } else {
-      item.probe.emplace(Probe::load(path, options));
+      item.probe.emplace(loadProbe(path, options));
     }
   } catch (const std::exception& e) {
     item.error = e.what();

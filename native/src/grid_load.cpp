@@ -1,7 +1,7 @@
 #include "probelights/grid_load.h"
 
 #include "probelights/error.h"
-#include "probelights/image.h"
+#include "probelights/image_file.h"
 #include "probelights/stopwatch.h"
 
 namespace probelights {
@@ -11,7 +11,7 @@ namespace {
 GridProbe loadWhole(const std::string& path, const ProbeOptions& options, int cellSize,
                     CentroidWeight centroid) {
   // The pixels are checked in the table's pass (Probe::unchecked): one pass over them instead of two.
-  Probe probe = Probe::loadUnchecked(path, options);
+  Probe probe = loadProbeUnchecked(path, options);
   Stopwatch t;
   PixelReport counts;
   MomentTable table(probe, cellSize, centroid, &counts);

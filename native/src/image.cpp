@@ -1,5 +1,3 @@
-#include "probelights/image.h"
-
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 #include <OpenImageIO/strutil.h>
@@ -13,6 +11,7 @@
 #include <memory>
 
 #include "probelights/error.h"
+#include "probelights/image_file.h"
 #include "probelights/probe.h"
 
 namespace probelights {
@@ -335,11 +334,11 @@ Image readImageBands(const std::string& path, int bandRows,
   return info;
 }
 
-Probe Probe::load(const std::string& path, const ProbeOptions& options) {
+Probe loadProbe(const std::string& path, const ProbeOptions& options) {
   return Probe(readImage(path), options.projection, options.nonFinite, path);
 }
 
-Probe Probe::loadUnchecked(const std::string& path, const ProbeOptions& options) {
+Probe loadProbeUnchecked(const std::string& path, const ProbeOptions& options) {
   return Probe(readImage(path), options.projection, path);
 }
 

@@ -5,13 +5,14 @@
 
 #include "probelights/accuracy.h"
 #include "probelights/error.h"
+#include "probelights/image_file.h"
 #include "test_probes.h"
 
 namespace probelights {
 namespace {
 
 TEST(AutoCount, FindsTheSmallestCountThatMeetsTheTolerance) {
-  Probe probe = Probe::load(PROBELIGHTS_BUNDLED_PROBE);
+  Probe probe = loadProbe(PROBELIGHTS_BUNDLED_PROBE);
   Evaluator ev(probe, kDiffuse);
   auto r = autoCount(probe, ev, BakeOptions{}, 0.02, false);
   ASSERT_TRUE(r.met);
@@ -27,7 +28,7 @@ TEST(AutoCount, FindsTheSmallestCountThatMeetsTheTolerance) {
 TEST(AutoCount, AMissKeepsTheCountWithTheLowestError) {
   // Shadows of many narrow lights can be worse than of a few: when the tolerance is missed, the result is the
   // count with the lowest error tried, never a larger count that did worse.
-  Probe probe = Probe::load(PROBELIGHTS_BUNDLED_PROBE);
+  Probe probe = loadProbe(PROBELIGHTS_BUNDLED_PROBE);
   Evaluator ev(probe, kDiffuse | kShadow, {256, false});
   auto r = autoCount(probe, ev, BakeOptions{}, 1e-9, false, 1024);
   ASSERT_FALSE(r.met);

@@ -5,6 +5,7 @@
 
 #include "probelights/accuracy.h"
 #include "probelights/error.h"
+#include "probelights/image_file.h"
 #include "probelights/refit.h"
 #include "probelights/sun_angles.h"
 #include "test_probes.h"
@@ -38,7 +39,7 @@ void expectKept(const Probe& probe, BakeOptions o, const AccuracyOptions& a, Met
 }
 
 TEST(BothCuts, KeepsTheCutWhoseLightsFitBetterAsThatCutAloneMakesThem) {
-  const Probe probe = Probe::load(PROBELIGHTS_BUNDLED_PROBE);
+  const Probe probe = loadProbe(PROBELIGHTS_BUNDLED_PROBE);
   AccuracyOptions a;
   a.effects = kDiffuse | kShadow, a.refit = a.moveDirections = true, a.evaluatorWidth = 128;
   const Evaluator evaluator(probe, a.effects, {a.evaluatorWidth, true, a.sunProfile});
@@ -60,7 +61,7 @@ TEST(BothCuts, KeepsTheCutWhoseLightsFitBetterAsThatCutAloneMakesThem) {
 }
 
 TEST(BothCuts, AutoFinishesBothUpTo16LightsAndAboveTheBetterStartedCutAlone) {
-  const Probe probe = Probe::load(PROBELIGHTS_BUNDLED_PROBE);
+  const Probe probe = loadProbe(PROBELIGHTS_BUNDLED_PROBE);
   AccuracyOptions a;
   a.effects = kDiffuse | kShadow, a.refit = a.moveDirections = true, a.evaluatorWidth = 128;
   a.cuts = CutChoice::Auto;
@@ -95,7 +96,7 @@ TEST(BothCuts, AutoFinishesBothUpTo16LightsAndAboveTheBetterStartedCutAlone) {
 }
 
 TEST(BothCuts, RefusesWhatItCannotCompare) {
-  const Probe probe = Probe::load(PROBELIGHTS_BUNDLED_PROBE);
+  const Probe probe = loadProbe(PROBELIGHTS_BUNDLED_PROBE);
   AccuracyOptions a;
   a.cuts = CutChoice::Both;
   BakeOptions o;

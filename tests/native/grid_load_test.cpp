@@ -13,6 +13,7 @@
 #include "probelights/bake.h"
 #include "probelights/error.h"
 #include "probelights/evaluate.h"
+#include "probelights/image_file.h"
 #include "probelights/preview.h"
 
 namespace fs = std::filesystem;
@@ -77,7 +78,7 @@ BakeOptions at(WorkingResolution resolution) {
 
 TEST(GridLoad, BandByBandGivesTheLightsOfAWholeLoadWhateverTheBandHeight) {
   const std::string path = PROBELIGHTS_BUNDLED_PROBE;  // 1024 x 512 .hdr
-  const Probe whole = Probe::load(path);
+  const Probe whole = loadProbe(path);
   for (Method method : {Method::Variance, Method::MedianCut})
     for (bool horizon : {false, true}) {
       BakeOptions o;
@@ -110,7 +111,7 @@ TEST(GridLoad, MirrorBallGreyAndAlphaImagesBandByBand) {
   for (int channels : {1, 2, 3, 4}) {
     const fs::path file = dir / ("ball" + std::to_string(channels) + ".exr");
     writeImage(file, S, S, channels, sky(S, S, channels));
-    const BakeResult reference = bake(Probe::load(file.string(), ball), o);
+    const BakeResult reference = bake(loadProbe(file.string(), ball), o);
     expectSameBake(reference, bakeOnGrid(loadGrid(file.string(), ball, o, 10), o),
                    std::to_string(channels) + " channels");
   }
@@ -133,7 +134,7 @@ TEST(GridLoad, NonFiniteSamplesGiveTheWholeLoadsErrorOrReport) {
     SCOPED_TRACE(res.toString());
     std::string wholeError, bandError;
     try {
-      Probe::load(file.string());
+      loadProbe(file.string());
     } catch (const Error& e) {
       wholeError = e.what();
     }
@@ -147,7 +148,7 @@ TEST(GridLoad, NonFiniteSamplesGiveTheWholeLoadsErrorOrReport) {
 
     ProbeOptions zero;
     zero.nonFinite = NonFinitePolicy::Zero;
-    const Probe whole = Probe::load(file.string(), zero);
+    const Probe whole = loadProbe(file.string(), zero);
     const GridProbe g = loadGrid(file.string(), zero, at(res), 8);
     EXPECT_EQ(g.probe.report().notes, whole.report().notes);
     EXPECT_EQ(g.probe.report().nonFiniteSamples, 2);
@@ -187,7 +188,7 @@ TEST(GridLoad, FullResolutionAndTiledFilesAreLoadedWhole) {
   o.resolution = WorkingResolution{WorkingResolution::Mode::Full, 0};
   const GridProbe full = loadGrid((dir / "lines.exr").string(), {}, o, 8);
   EXPECT_TRUE(full.probe.hasPixels());  // cell size 1: lights re-read their regions' pixels
-  expectSameBake(bake(Probe::load((dir / "lines.exr").string()), o), bakeOnGrid(full, o), "full");
+  expectSameBake(bake(loadProbe((dir / "lines.exr").string()), o), bakeOnGrid(full, o), "full");
   fs::remove_all(dir);
 }
 

@@ -17,6 +17,7 @@
 #include "probelights/accuracy.h"
 #include "probelights/bake.h"
 #include "probelights/error.h"
+#include "probelights/image_file.h"
 #include "test_probes.h"
 
 namespace fs = std::filesystem;
@@ -63,7 +64,7 @@ TEST(Probe, RealProbesEveryProbeBakesAndConservesEnergy) {
   if (files.empty()) GTEST_SKIP() << "no probes in ../shared/hdri or Blender's studiolights";
   for (const auto& f : files) {
     SCOPED_TRACE(f.string());
-    Probe probe = Probe::load(f.string());
+    Probe probe = loadProbe(f.string());
     Rgb integral = probe.integral();
     for (Method m : {Method::MedianCut, Method::Variance}) {
       BakeOptions o;
@@ -80,7 +81,7 @@ TEST(Probe, RealProbesEveryProbeBakesAndConservesEnergy) {
 TEST(Probe, RealProbesNegativeSamplesOfLossyExrAreWeighedAsZeroCountedAndKeptInTheLights) {
   fs::path f = fs::path(PROBELIGHTS_SHARED_HDRI) / "pmndrs_esplanade_dwab.exr";
   if (!fs::exists(f)) GTEST_SKIP() << "skipped: ../shared not found (" << f << ")";
-  Probe probe = Probe::load(f.string());
+  Probe probe = loadProbe(f.string());
   EXPECT_EQ(probe.report().negativeSamples, 5054);  // as ../shared/hdri/README.md says
   ASSERT_FALSE(probe.report().notes.empty());
   for (int y = 0; y < probe.height(); ++y)
@@ -266,11 +267,11 @@ TEST(Probe, BufferCheckedInTheGridsPassGivesWhatACheckedProbeGives) {
 
 TEST(Probe, BadInputsOneLineErrors) {
   fs::path dir = tempDir();
-  EXPECT_NE(expectError([&] { Probe::load((dir / "missing.exr").string()); }).find("no such file"),
+  EXPECT_NE(expectError([&] { loadProbe((dir / "missing.exr").string()); }).find("no such file"),
             std::string::npos);
   { std::ofstream(dir / "garbage.exr") << "this is not an image\n"; }
-  expectError([&] { Probe::load((dir / "garbage.exr").string()); });
-  expectError([&] { Probe::load(dir.string()); });
+  expectError([&] { loadProbe((dir / "garbage.exr").string()); });
+  expectError([&] { loadProbe(dir.string()); });
   expectError([&] { Probe p(ImageView{nullptr, 0, 0, 3}, ProjectionKind::LatLong); });
   std::vector<float> px(3, 1.0f);
   expectError([&] { Probe p(ImageView{px.data(), 1, 1, 0}, ProjectionKind::LatLong); });
@@ -315,7 +316,7 @@ TEST(Probe, FilesFormatsOpenImageIOReadsGiveTheSameLights) {
         std::pair{"p.tif", OIIO::TypeDesc::FLOAT}, std::pair{"p.pfm", OIIO::TypeDesc::UNKNOWN},
         std::pair{"p.hdr", OIIO::TypeDesc::FLOAT}, std::pair{"exr_named.hdr", OIIO::TypeDesc::UNKNOWN}}) {
     if (type != OIIO::TypeDesc::UNKNOWN) writeImage(dir / name, W, H, 3, rgb, type);
-    Probe p = Probe::load((dir / name).string());
+    Probe p = loadProbe((dir / name).string());
     EXPECT_EQ(p.projection().kind(), ProjectionKind::LatLong);
     EXPECT_LE(maxRelativeDifference(p.integral(), expected), 1e-2) << name;  // RGBE rounds to 8-bit mantissas
     double worst = 0;
@@ -336,7 +337,7 @@ TEST(Probe, RealProbesWithoutSummedAreaTablesTheSameLights) {
   // power of two (rounds), other counts (by priority) and the horizon cut: the same regions and the same
   // lights as with the tables (their sums differ only in rounding).
   for (const fs::path& file : realProbes()) {
-    const Probe probe = Probe::load(file.string());
+    const Probe probe = loadProbe(file.string());
     if (probe.projection().kind() != ProjectionKind::LatLong) continue;
     const MomentTable tables(probe, 1, CentroidWeight::Energy, nullptr, MomentTable::Storage::Tables);
     PixelReport counts;
@@ -370,14 +371,14 @@ TEST(Probe, FilesAutoProjectionPicksLatLongFor2To1AndAsksOtherwise) {
   std::vector<float> px(S * S * 3, 1.0f);
   fs::path dir = tempDir();
   writeImage(dir / "square.exr", S, S, 3, px);
-  std::string m = expectError([&] { Probe::load((dir / "square.exr").string()); });
+  std::string m = expectError([&] { loadProbe((dir / "square.exr").string()); });
   EXPECT_NE(m.find("--projection"), std::string::npos) << m;
   ProbeOptions ball;
   ball.projection = ProjectionChoice::MirrorBall;
-  Probe p = Probe::load((dir / "square.exr").string(), ball);
+  Probe p = loadProbe((dir / "square.exr").string(), ball);
   EXPECT_NEAR(p.integral()[0], 4 * kPi, 1e-9);
   writeImage(dir / "wide.exr", 2 * S, S, 3, std::vector<float>(2 * S * S * 3, 1.0f));
-  Probe wide = Probe::load((dir / "wide.exr").string());
+  Probe wide = loadProbe((dir / "wide.exr").string());
   EXPECT_EQ(wide.projection().kind(), ProjectionKind::LatLong);
   EXPECT_NE(wide.report().notes.at(0).find("auto"), std::string::npos);
   fs::remove_all(dir);
@@ -392,7 +393,7 @@ namespace {
 // The bundled sunny probe resampled into a mirror ball and an angular map (nearest lat-long pixel for each
 // direction): the same sun must come out in the same direction, and the same energy, up to the resampling.
 TEST(Probe, RealProbesMirrorBallAndAngularResamplingsAgreeWithLatLong) {
-  Probe latlong = Probe::load(PROBELIGHTS_BUNDLED_PROBE);
+  Probe latlong = loadProbe(PROBELIGHTS_BUNDLED_PROBE);
   BakeOptions o;
   o.lights = 16;
   auto reference = bake(latlong, o);

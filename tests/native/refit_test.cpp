@@ -9,13 +9,14 @@
 
 #include "probelights/accuracy.h"
 #include "probelights/error.h"
+#include "probelights/image_file.h"
 #include "test_probes.h"
 
 namespace probelights {
 namespace {
 
 TEST(Refit, LowersTheDiffuseErrorOnRealProbes) {
-  Probe probe = Probe::load(PROBELIGHTS_BUNDLED_PROBE);
+  Probe probe = loadProbe(PROBELIGHTS_BUNDLED_PROBE);
   Evaluator ev(probe, kDiffuse | kShadow, {2048, true});
   for (int n : {16, 64}) {
     BakeOptions o;
@@ -33,7 +34,7 @@ TEST(Refit, LowersTheDiffuseErrorOnRealProbes) {
 }
 
 TEST(Refit, MovingDirectionsLowersItFurther) {
-  Probe probe = Probe::load(PROBELIGHTS_BUNDLED_PROBE);
+  Probe probe = loadProbe(PROBELIGHTS_BUNDLED_PROBE);
   Evaluator ev(probe, kDiffuse | kShadow, {2048, true});
   BakeOptions o;
   o.lights = 16;
@@ -77,7 +78,7 @@ TEST(Refit, PlacesADarkLightWhereLightIsMissing) {
 // The refit solves three colours a light, so it fits on its own 32 x 32 ground points (none of them the
 // 16 x 16 the error is measured on, nor the angle fit's 20 x 20).
 TEST(Refit, FitsOnItsOwnDenserGroundPoints) {
-  Probe probe = Probe::load(PROBELIGHTS_BUNDLED_PROBE);
+  Probe probe = loadProbe(PROBELIGHTS_BUNDLED_PROBE);
   Evaluator ev(probe, kDiffuse | kShadow, {512, true});
   ASSERT_EQ(ev.refitGroundPoints().size(), 1024u);
   auto count = [](const std::vector<Receiver>& rs, bool ground) {
@@ -102,7 +103,7 @@ TEST(Refit, DenserGroundPointsKeepTheRefitFromOverfitting) {
   const std::string path = std::string(PROBELIGHTS_STUDIOLIGHTS) + "/interior.exr";
   if (!std::filesystem::exists(path))
     GTEST_SKIP() << "skipped: Blender's studio lights not found (" << path << ")";
-  Probe probe = Probe::load(path);
+  Probe probe = loadProbe(path);
   Evaluator ev(probe, kDiffuse | kShadow, {2048, true});
   BakeOptions o;
   o.lights = 16;

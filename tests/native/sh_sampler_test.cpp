@@ -12,6 +12,7 @@
 
 #include "chi2.h"
 #include "probelights/error.h"
+#include "probelights/image_file.h"
 #include "probelights/sh_variance.h"
 #include "test_probes.h"
 
@@ -64,7 +65,7 @@ std::vector<double> positiveFunction() {
 }
 
 std::vector<double> sunnyProbe(int bands) {
-  auto probe = Probe::load(PROBELIGHTS_BUNDLED_PROBE);
+  auto probe = loadProbe(PROBELIGHTS_BUNDLED_PROBE);
   return projectProbe(probe, bands).luminance();
 }
 
@@ -194,7 +195,7 @@ TEST(ShSampler, ImportanceSamplingIrradianceBeatsUniformAndOffset) {
   // reconstruction is small but the real light is not, and lose to uniform sampling
   // (native/bench/sh_benchmark.cpp shows the grid). A normal facing the ground loses with any radiance-only
   // sampler; a renderer covers it by MIS with cosine sampling.
-  Probe probe = Probe::load(PROBELIGHTS_BUNDLED_PROBE);
+  Probe probe = loadProbe(PROBELIGHTS_BUNDLED_PROBE);
   const int bands = 8;
   std::vector<double> c = projectProbe(probe, bands).luminance();
   ShSampler berger(bands, c, 0.1, 8), offset(bands, offsetUntilPositive(bands, c), 0.0, 8);

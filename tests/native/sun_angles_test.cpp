@@ -5,6 +5,7 @@
 
 #include "probelights/accuracy.h"
 #include "probelights/error.h"
+#include "probelights/image_file.h"
 #include "test_probes.h"
 
 namespace probelights {
@@ -13,7 +14,7 @@ namespace {
 TEST(SunAngles, FittedAnglesCastCloserShadowsThanPointsOrSpread) {
   // The bundled probe (a sun near the zenith) at 16 lights, measured: shadow error 2.09 % as points, 4.55 %
   // with the spread's angles, 1.61 % fitted.
-  Probe probe = Probe::load(PROBELIGHTS_BUNDLED_PROBE);
+  Probe probe = loadProbe(PROBELIGHTS_BUNDLED_PROBE);
   const Evaluator ev(probe, kDiffuse | kShadow, {512});
   BakeOptions o;
   o.lights = 16;
@@ -38,7 +39,7 @@ TEST(SunAngles, FittedAnglesCastCloserShadowsThanPointsOrSpread) {
 }
 
 TEST(SunAngles, BlenderThreesDiscStaysFinite) {
-  Probe probe = Probe::load(PROBELIGHTS_BUNDLED_PROBE);
+  Probe probe = loadProbe(PROBELIGHTS_BUNDLED_PROBE);
   EvaluatorOptions options{256};
   options.sunProfile = SunProfile::TangentDisc;
   const Evaluator ev(probe, kDiffuse | kShadow, options);
@@ -54,7 +55,7 @@ TEST(SunAngles, NamesAndWhatTheyNeed) {
   EXPECT_EQ(toString(SunAngles::Points), "points");
   EXPECT_THROW(parseSunAngles("soft"), Error);
   EXPECT_EQ(parseSunProfile("disc"), SunProfile::TangentDisc);
-  Probe probe = Probe::load(PROBELIGHTS_BUNDLED_PROBE);
+  Probe probe = loadProbe(PROBELIGHTS_BUNDLED_PROBE);
   const Evaluator diffuseOnly(probe, kDiffuse, {128});
   std::vector<Light> lights(2);
   EXPECT_THROW(fitSunAngles(diffuseOnly, lights), Error);
@@ -62,7 +63,7 @@ TEST(SunAngles, NamesAndWhatTheyNeed) {
 }
 
 TEST(SunAngles, TheBakeReportsWhatItDid) {
-  Probe probe = Probe::load(PROBELIGHTS_BUNDLED_PROBE);
+  Probe probe = loadProbe(PROBELIGHTS_BUNDLED_PROBE);
   BakeOptions o;
   o.lights = 8;
   AccuracyOptions a;

@@ -1,8 +1,8 @@
-// Pixels in memory: a borrowed view of a caller's float buffer, or an image read from disk with OpenImageIO.
+// Pixels in memory: a borrowed view of a caller's float buffer, or an image that owns its pixels (read from a
+// file: image_file.h).
 #pragma once
 
 #include <cstddef>
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -45,21 +45,5 @@ struct Image {
 
   ImageView view() const { return {pixels.get(), width, height, channels}; }
 };
-
-// Reads the first subimage, finest MIP level, all channels, as float, with OpenImageIO: any format it reads
-// (OpenEXR incl. half/tiled/mip-mapped/DWAB, Radiance HDR, TIFF, PFM, ...). Throws Error with one line on
-// failure.
-Image readImage(const std::string& path);
-
-// Reads the same image band by band, top to bottom, never holding it whole: consume(band) gets rows
-// [band.firstRow, band.firstRow + band.height), at most bandRows of them, while the next band is being read
-// (two band buffers in all). Returns the image's description (width, height, channels, format; no pixels).
-// Throws Error like readImage, and whatever consume throws. Scanline files only: canReadInBands() says.
-Image readImageBands(const std::string& path, int bandRows,
-                     const std::function<void(const ImageView&)>& consume);
-
-// The description of the image at `path` (no pixels), and whether readImageBands can read it (a scanline
-// file; tiled and deep ones are read whole). Throws Error like readImage.
-Image describeImage(const std::string& path, bool* canReadInBands = nullptr);
 
 }  // namespace probelights

@@ -47,12 +47,8 @@ class Probe {
  public:
   // Borrows a caller's buffer (no copy): the caller keeps it alive while the Probe is used.
   Probe(ImageView view, ProjectionKind projection, NonFinitePolicy nonFinite = NonFinitePolicy::Error);
-  // Owns an image (what load() reads).
+  // Owns an image (what loadProbe reads: image_file.h).
   Probe(Image image, ProjectionChoice projection, NonFinitePolicy nonFinite, const std::string& sourceName);
-
-  static Probe load(const std::string& path, const ProbeOptions& options = {});  // in probelights_io
-  // load() without the pixels' check, for a caller whose first pass checks them (grid_load.h; see unchecked).
-  static Probe loadUnchecked(const std::string& path, const ProbeOptions& options = {});
 
   // Rows [view.firstRow, view.firstRow + view.height) of a probe of `projection`'s size, for building a
   // working grid band by band (grid_load.h): pixel() and radiance() take the whole probe's row numbers. Its
@@ -107,7 +103,8 @@ class Probe {
 
  private:
   Probe(ImageView view, const Projection& projection);
-  Probe(Image image, ProjectionChoice projection, const std::string& sourceName);  // not checked
+  Probe(Image image, ProjectionChoice projection, const std::string& sourceName);         // not checked
+  friend Probe loadProbeUnchecked(const std::string& path, const ProbeOptions& options);  // image_file.h
   void count();  // the report's counts of the view's rows
   // Pixel (x, y) as RGB, each sample read by `read`: grey replicated, alpha ignored.
   Rgb pixel(int x, int y, double (*read)(float)) const {

@@ -1,0 +1,32 @@
+// Bakes from files, as a request asks (request.h): the one entry that decides how a file is read (band by
+// band into the working grid when the bake needs nothing else, else whole) and what runs on it. The CLI's
+// bake and library commands and the module's bake_file and bake_files call it. In probelights_io (it reads
+// files with OpenImageIO).
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "probelights/request.h"
+
+namespace probelights {
+
+struct BakedFile {
+  std::string path;
+  std::optional<Probe> probe;           // as read (read into the grid alone: without its pixels)
+  std::optional<EvaluatedBake> result;  // empty when the probe could not be read or baked
+  std::string error;                    // why, one line
+  double loadMs = 0, bakeMs = 0;
+};
+
+// Reads the probe at `path` and bakes it. Throws Error for a probe that cannot be read or baked.
+BakedFile bakeFile(const std::string& path, const BakeRequest& request);
+
+// Bakes each of `paths` (expandProbePaths' files) in order, the next loading while one bakes (forEachProbe),
+// and calls consume with it, its result or its error (the others go on), until consume returns false.
+void bakeFiles(const std::vector<std::string>& paths, const BakeRequest& request,
+               const std::function<bool(BakedFile&)>& consume);
+
+}  // namespace probelights

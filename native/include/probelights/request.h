@@ -1,0 +1,66 @@
+// One bake as every shell asks for it (the CLI, the Python module, the library command): how to read the
+// probe, the cut and the count, and the accuracy work. Its members' defaults are the product's defaults,
+// defined once (BakeOptions, AccuracyOptions, ProbeOptions); the shells fill a request by the names of one
+// table of options and print its defaults from there.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "probelights/accuracy.h"
+#include "probelights/probe.h"
+
+namespace probelights {
+
+struct BakeRequest {
+  ProbeOptions probe;        // how a file is read (a caller's buffer: its projection comes with it)
+  BakeOptions bake;          // the cut and the count
+  AccuracyOptions accuracy;  // evaluation, refit, tolerance, sun angles, cuts
+  // The caller needs the probe's pixels after the bake (a preview): never read into the working grid alone.
+  bool keepPixels = false;
+};
+
+// An option of a request by name: the module's keyword ("max_error") and the CLI's option ("--max-error",
+// the name with '-' for '_', unless `cli` says otherwise).
+struct RequestOption {
+  std::string name;
+  std::string values;  // what it takes, for usage texts ("N", "one|both|auto"); "" for a switch
+  std::string help;    // what it does, one short line
+  // Sets the option from text (a switch takes true/false, on/off or 1/0); throws Error naming the option as
+  // `spelled` (the caller's spelling: "--max-error" or "max_error").
+  std::function<void(BakeRequest&, const std::string& spelled, const std::string& text)> set;
+  // The option's value in a request as text: of BakeRequest{}, its default.
+  std::function<std::string(const BakeRequest&)> get;
+  std::string cli;  // the CLI's spelling when not "--" + name
+  std::string cliName() const;
+  bool isSwitch() const { return values.empty(); }
+};
+
+// Every option of a bake request (not the projection: a file's is chosen by ProbeOptions, a buffer's given
+// with it, and their defaults differ).
+const std::vector<RequestOption>& requestOptions();
+// The option called `name` (module keyword or CLI spelling); throws Error naming the options for another.
+const RequestOption& requestOption(const std::string& name);
+
+// Numbers in options: finite reals, whole counts, and a tolerance as a fraction or a percentage ("1%").
+// Each throws Error naming `option` and the text.
+double parseReal(const std::string& option, const std::string& text);
+int parseCount(const std::string& option, const std::string& text);
+double parseTolerance(const std::string& option, const std::string& text);
+
+// Whether the request needs nothing of a file but its working grid (bakesOnGridAlone, and no pixels kept):
+// then the file is read band by band into the grid and never held whole.
+bool readsIntoGridAlone(const BakeRequest& request);
+
+// The bake of a probe as the request asks, on the working grid its load built (when it was read into one:
+// `grid`, built in `tablesMs`) or on its pixels. The one place that decides what runs for a loaded probe.
+EvaluatedBake bakeLoaded(const Probe& probe, const BakeRequest& request, const MomentTable* grid = nullptr,
+                         double tablesMs = 0);
+
+// bakeBuffer (accuracy.h) with a request: a caller's pixels, `projection` given with them.
+EvaluatedBake bakeBuffer(ImageView view, ProjectionKind projection, const BakeRequest& request,
+                         std::optional<Probe>& probe);
+
+}  // namespace probelights

@@ -1,0 +1,197 @@
+#include "probelights/request.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include "probelights/error.h"
+
+namespace probelights {
+
+namespace {
+
+bool parseSwitch(const std::string& option, const std::string& text) {
+  if (text == "true" || text == "on" || text == "1") return true;
+  if (text == "false" || text == "off" || text == "0") return false;
+  throw Error(option + " takes on or off, got '" + text + "'");
+}
+
+std::string real(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+std::string onOff(bool v) { return v ? "on" : "off"; }
+
+using R = BakeRequest;
+using S = const std::string&;
+
+RequestOption option(std::string name, std::string values, std::string help,
+                     std::function<void(R&, S, S)> set, std::function<std::string(const R&)> get,
+                     std::string cli = "") {
+  return {std::move(name), std::move(values), std::move(help),
+          std::move(set),  std::move(get),    std::move(cli)};
+}
+
+std::vector<RequestOption> makeOptions() {
+  return {
+      option(
+          "method", "median-cut|variance|sh",
+          "the cut: median cut, variance minimization or SH importance warping",
+          [](R& r, S, S v) { r.bake.method = parseMethod(v); },
+          [](const R& r) { return toString(r.bake.method); }),
+      option(
+          "lights", "N", "number of lights, N >= 1", [](R& r, S o, S v) { r.bake.lights = parseCount(o, v); },
+          [](const R& r) { return std::to_string(r.bake.lights); }),
+      option(
+          "centroid", "energy|energy2", "the weight that places a light in its region",
+          [](R& r, S, S v) { r.bake.centroid = parseCentroid(v); },
+          [](const R& r) { return toString(r.bake.centroid); }),
+      option(
+          "resolution", "full|auto|WIDTH",
+          "the working resolution the cuts are decided on (auto: full up to 2048 px wide); lights are always "
+          "summed at full resolution",
+          [](R& r, S, S v) { r.bake.resolution = WorkingResolution::parse(v); },
+          [](const R& r) { return r.bake.resolution.toString(); }),
+      option(
+          "horizon", "on|off", "lat-long: the first cut at the horizon, so no light mixes sky and ground",
+          [](R& r, S o, S v) { r.bake.splitAtHorizon = parseSwitch(o, v); },
+          [](const R& r) { return onOff(r.bake.splitAtHorizon); }),
+      option(
+          "bands", "B", "sh: SH bands", [](R& r, S o, S v) { r.bake.shBands = parseCount(o, v); },
+          [](const R& r) { return std::to_string(r.bake.shBands); }),
+      option(
+          "epsilon", "E", "sh: Berger's epsilon", [](R& r, S o, S v) { r.bake.shEpsilon = parseReal(o, v); },
+          [](const R& r) { return real(r.bake.shEpsilon); }),
+      option(
+          "effects", "diffuse,shadow,glossy", "the effects to evaluate (evaluating reports their errors)",
+          [](R& r, S, S v) { r.accuracy.effects = parseEffects(v); },
+          [](const R& r) { return effectsToString(r.accuracy.effects); }),
+      option(
+          "evaluate", "", "evaluate the lights on the effects without choosing the count",
+          [](R& r, S o, S v) { r.accuracy.evaluate = parseSwitch(o, v); },
+          [](const R& r) { return onOff(r.accuracy.evaluate); }),
+      option(
+          "refit", "",
+          "re-solve the lights' colours (non-negative least squares) so that their diffuse light and shadows "
+          "match the probe's",
+          [](R& r, S o, S v) { r.accuracy.refit = parseSwitch(o, v); },
+          [](const R& r) { return onOff(r.accuracy.refit); }),
+      // After refit in this table, which the shells apply in order: moving directions is a refit.
+      option(
+          "move_directions", "", "the refit also moves the lights' directions (lower error at few lights)",
+          [](R& r, S o, S v) {
+            r.accuracy.moveDirections = parseSwitch(o, v);
+            if (r.accuracy.moveDirections) r.accuracy.refit = true;
+          },
+          [](const R& r) { return onOff(r.accuracy.moveDirections); }, "--refit-directions"),
+      option(
+          "max_error", "E", "the fewest lights whose error on the effects is at most E (1% or 0.01; 0: off)",
+          [](R& r, S o, S v) {
+            const double e = parseTolerance(o, v);
+            if (!(e >= 0 && e < 1))
+              throw Error(o + " takes an error between 0 and 100% (e.g. 1% or 0.01; 0: off), got '" + v +
+                          "'");
+            r.accuracy.maxError = e;
+          },
+          [](const R& r) { return real(r.accuracy.maxError); }),
+      option(
+          "evaluator_width", "W",
+          "the probe's width in pixels for the errors and the fits (wider is grouped)",
+          [](R& r, S o, S v) {
+            const int w = parseCount(o, v);
+            if (w < 1) throw Error(o + " takes a width of at least 1 pixel, got '" + v + "'");
+            r.accuracy.evaluatorWidth = w;
+          },
+          [](const R& r) { return std::to_string(r.accuracy.evaluatorWidth); }),
+      option(
+          "sun_angles", "fit|spread|points",
+          "the lights' cone angles: fitted to the probe's shadows when shadows are evaluated, from each "
+          "region's spread, or 0 (hard shadows)",
+          [](R& r, S, S v) { r.accuracy.sunAngles = parseSunAngles(v); },
+          [](const R& r) { return toString(r.accuracy.sunAngles); }),
+      option(
+          "sun_profile", "cone|disc",
+          "the renderer's sun: a uniform cone (Cycles 4.0+) or a disc of radius tan(angle / 2) (Cycles 3.x)",
+          [](R& r, S, S v) { r.accuracy.sunProfile = parseSunProfile(v); },
+          [](const R& r) { return toString(r.accuracy.sunProfile); }),
+      option(
+          "cuts", "one|both|auto",
+          "one: the method's cut; both: variance and median cut each made ready, the better kept; auto: both "
+          "up "
+          "to 16 lights, above both started and the better finished",
+          [](R& r, S, S v) { r.accuracy.cuts = parseCutChoice(v); },
+          [](const R& r) { return toString(r.accuracy.cuts); }),
+      option(
+          "nonfinite", "error|zero", "NaN/Inf pixels: refuse the probe or read them as 0",
+          [](R& r, S, S v) { r.probe.nonFinite = parseNonFinitePolicy(v); },
+          [](const R& r) { return toString(r.probe.nonFinite); }),
+  };
+}
+
+}  // namespace
+
+std::string RequestOption::cliName() const {
+  if (!cli.empty()) return cli;
+  std::string s = "--" + name;
+  for (char& c : s)
+    if (c == '_') c = '-';
+  return s;
+}
+
+const std::vector<RequestOption>& requestOptions() {
+  static const std::vector<RequestOption> options = makeOptions();
+  return options;
+}
+
+const RequestOption& requestOption(const std::string& name) {
+  std::string known;
+  for (const RequestOption& o : requestOptions()) {
+    if (o.name == name || o.cliName() == name) return o;
+    known += (known.empty() ? "" : ", ") + o.name;
+  }
+  throw Error("unknown option '" + name + "': the options are " + known);
+}
+
+double parseReal(const std::string& option, const std::string& text) {
+  try {
+    std::size_t used = 0;
+    const double v = std::stod(text, &used);
+    if (used == text.size() && std::isfinite(v)) return v;
+  } catch (const std::exception&) {
+  }
+  throw Error(option + " expects a number, got '" + text + "'");
+}
+
+int parseCount(const std::string& option, const std::string& text) {
+  try {
+    std::size_t used = 0;
+    const long long n = std::stoll(text, &used);
+    if (used == text.size() && n >= -1000000000LL && n <= 1000000000LL) return static_cast<int>(n);
+  } catch (const std::exception&) {
+  }
+  throw Error(option + " expects a whole number, got '" + text + "'");
+}
+
+double parseTolerance(const std::string& option, const std::string& text) {
+  const bool percent = !text.empty() && text.back() == '%';
+  const double v = parseReal(option, percent ? text.substr(0, text.size() - 1) : text);
+  return percent ? v / 100 : v;
+}
+
+bool readsIntoGridAlone(const BakeRequest& request) {
+  return bakesOnGridAlone(request.bake, request.accuracy) && !request.keepPixels;
+}
+
+EvaluatedBake bakeLoaded(const Probe& probe, const BakeRequest& request, const MomentTable* grid,
+                         double tablesMs) {
+  return grid ? bakeOnGrid(probe, *grid, tablesMs, request.bake, request.accuracy.sunAngles)
+              : bakeEvaluated(probe, request.bake, request.accuracy);
+}
+
+EvaluatedBake bakeBuffer(ImageView view, ProjectionKind projection, const BakeRequest& request,
+                         std::optional<Probe>& probe) {
+  return bakeBuffer(view, projection, request.probe.nonFinite, request.bake, request.accuracy, probe);
+}
+
+}  // namespace probelights
