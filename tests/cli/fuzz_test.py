@@ -1,7 +1,13 @@
-"""Mutated probe files, each baked by the CLI under a time and memory limit: every one must end in exit 0 with
-finite, non-negative lights, or exit 2 with one line on stderr. Never a crash, a hang, exit 1 or a NaN.
+"""Mutated probe files, baked by the CLI under a time and memory limit: every one must end in finite,
+non-negative lights, or in one error line. Never a crash, a hang, exit 1 or a NaN.
 
     fuzz_test.py PROBELIGHTS_BINARY BUNDLED_PROBE [CASES]
+
+The cases are baked as libraries (`bake FOLDER --out-dir`, BATCH of them per process: each either a whole JSON
+of finite lights or an error of one line in summary.json, the process exiting 0 or 3), which reads and bakes each
+file through the same entry as a single bake (bake_file.h) without paying a process start per case; every
+SINGLE-th case is also baked alone, where it must exit 0 with a whole JSON or exit 2 with one line on stderr. A
+batch that crashes, hangs or exits otherwise is baked again case by case, which names the case.
 
 The mutations are drawn from a fixed seed (the same cases every run): bit flips, byte runs overwritten,
 truncations and header edits of the bundled probe, of a small .hdr and a small EXR made from it (oiiotool), and of
@@ -18,7 +24,9 @@ import sys
 import tempfile
 
 TIME_LIMIT = 30  # seconds per case; a case takes ~0.05 s
-MEMORY_LIMIT = 2 << 30  # address space per case
+MEMORY_LIMIT = 2 << 30  # address space per process
+BATCH = 50  # cases per library process
+SINGLE = 10  # every SINGLE-th case is also baked alone
 
 
 def make_inputs(probe, folder):
@@ -80,14 +88,64 @@ def mutate(rng, name, data):
     return bytes(data), kind
 
 
+def limit():
+    resource.setrlimit(resource.RLIMIT_AS, (MEMORY_LIMIT, MEMORY_LIMIT))
+
+
+def lights_problem(out):
+    """None when `out` is a whole JSON of finite lights with non-negative colours, else what is wrong."""
+    try:
+        d = json.load(open(out))
+        values = [v for light in d["lights"] for v in light["rgb"] + light["direction"]]
+        if not all(math.isfinite(v) for v in values) or any(v < 0 for l in d["lights"] for v in l["rgb"]):
+            return "a non-finite or negative light"
+    except (OSError, ValueError, KeyError) as e:
+        return f"no whole JSON ({e})"
+    return None
+
+
+def run_batch(binary, folder, batch):
+    """Bakes `batch` (cases) as one library; returns {index: problem or None}, or None when the process itself
+    failed (crash, hang, an exit other than 0 or 3), for the caller to bake the cases one by one."""
+    first = batch[0][0]
+    inputs, outputs = os.path.join(folder, f"batch{first}"), os.path.join(folder, f"batch{first}-out")
+    os.makedirs(inputs)
+    paths = {}
+    for index, name, data, _ in batch:
+        path = os.path.join(inputs, f"case{index}{os.path.splitext(name)[1]}")
+        with open(path, "wb") as f:
+            f.write(data)
+        paths[path] = index
+    args = [binary, "bake", inputs, "--out-dir", outputs, "--lights", "8", "--projection", "latlong", "-q"]
+    try:
+        p = subprocess.run(args, capture_output=True, timeout=TIME_LIMIT * 4, preexec_fn=limit)
+    except subprocess.TimeoutExpired:
+        return None
+    if p.returncode not in (0, 3):
+        return None
+    try:
+        summary = json.load(open(os.path.join(outputs, "summary.json")))
+    except (OSError, ValueError):
+        return None
+    found = {}
+    for entry in summary["results"]:
+        index = paths.get(entry["probe"])
+        if "error" in entry:
+            found[index] = "an error of more than one line" if "\n" in entry["error"].strip() else None
+        else:
+            found[index] = lights_problem(os.path.join(outputs, entry["output"]))
+    if set(found) != set(paths.values()) or summary.get("not_started"):
+        return None
+    shutil.rmtree(inputs)
+    shutil.rmtree(outputs)
+    return found
+
+
 def run_case(binary, folder, index, name, data, kind):
     path = os.path.join(folder, f"case{index}{os.path.splitext(name)[1]}")
     out = path + ".json"
     with open(path, "wb") as f:
         f.write(data)
-
-    def limit():
-        resource.setrlimit(resource.RLIMIT_AS, (MEMORY_LIMIT, MEMORY_LIMIT))
 
     args = [binary, "bake", path, "--lights", "8", "--projection", "latlong", "-q", "-o", out]
     try:
@@ -97,13 +155,8 @@ def run_case(binary, folder, index, name, data, kind):
     err = p.stderr.decode(errors="replace")
     problem = None
     if p.returncode == 0:
-        try:
-            d = json.load(open(out))
-            values = [v for light in d["lights"] for v in light["rgb"] + light["direction"]]
-            if not all(math.isfinite(v) for v in values) or any(v < 0 for l in d["lights"] for v in l["rgb"]):
-                problem = "exit 0 with a non-finite or negative light"
-        except (OSError, ValueError, KeyError) as e:
-            problem = f"exit 0 without a whole JSON ({e})"
+        wrong = lights_problem(out)
+        problem = f"exit 0 with {wrong}" if wrong else None
     elif p.returncode == 2:
         if err.count("\n") != 1 or not err.startswith("probelights: error: "):
             problem = "exit 2 without exactly one error line"
@@ -132,15 +185,28 @@ def main():
         plan.append((i, name, data, kind))
     outcomes = {}
     failures = []
+    batches = [plan[i:i + BATCH] for i in range(0, len(plan), BATCH)]
+    retried = 0
     with concurrent.futures.ThreadPoolExecutor(max_workers=os.cpu_count() or 2) as pool:
-        futures = {pool.submit(run_case, binary, folder, *case): case for case in plan}
-        for future in concurrent.futures.as_completed(futures):
-            i, name, _, kind = futures[future]
-            problem = future.result()
-            outcomes[(name, kind)] = outcomes.get((name, kind), 0) + 1
-            if problem:
-                failures.append(f"case {i} ({name}, {kind}): {problem}")
-    print(f"{cases} mutated probes; by file and mutation: " +
+        by_batch = {pool.submit(run_batch, binary, folder, batch): batch for batch in batches}
+        alone = {pool.submit(run_case, binary, folder, *case): case for case in plan[::SINGLE]}
+        for future in concurrent.futures.as_completed(by_batch):
+            batch = by_batch[future]
+            found = future.result()
+            if found is None:  # the batch's process failed: each case alone says which
+                retried += 1
+                found = {case[0]: pool.submit(run_case, binary, folder, *case).result() for case in batch}
+            for i, name, _, kind in batch:
+                outcomes[(name, kind)] = outcomes.get((name, kind), 0) + 1
+                if found[i]:
+                    failures.append(f"case {i} ({name}, {kind}) in a library: {found[i]}")
+        for future in concurrent.futures.as_completed(alone):
+            i, name, _, kind = alone[future]
+            if future.result():
+                failures.append(f"case {i} ({name}, {kind}) alone: {future.result()}")
+    if retried:
+        print(f"{retried} batches failed as processes and were baked case by case")
+    print(f"{cases} mutated probes in libraries of {BATCH}, every {SINGLE}th also alone; by file and mutation: " +
           ", ".join(f"{n} {k} {c}" for (n, k), c in sorted(outcomes.items())))
     if failures:
         kept = os.path.join(os.path.dirname(os.path.abspath(binary)), "fuzz-failures")
@@ -150,7 +216,10 @@ def main():
         for f in os.listdir(folder):
             if f.startswith("case"):
                 shutil.copy(os.path.join(folder, f), kept)
-        print(f"{len(failures)} of {cases} failed; their files are in {kept}")
+            elif f.startswith("batch") and not f.endswith("-out"):
+                for g in os.listdir(os.path.join(folder, f)):
+                    shutil.copy(os.path.join(folder, f, g), kept)
+        print(f"{len(failures)} failures among {cases} cases; their files are in {kept}")
         sys.exit(1)
     shutil.rmtree(folder)
     print("every case ended in exit 0 with finite lights or exit 2 with one line")
