@@ -241,13 +241,13 @@ std::string optionsDoc() {
   const BakeRequest defaults;
   for (const RequestOption& o : requestOptions()) {
     const std::string value = o.get(defaults);
+    // A switch, or an on|off option, is a bool here; a word in quotes; a number as it is.
+    const bool onOff = o.isSwitch() || o.values == "on|off";
     const bool word =
-        !o.isSwitch() && (o.values.find('|') != std::string::npos || o.values.find(',') != std::string::npos);
-    const std::string shown = o.isSwitch() ? (value == "on" ? "True" : "False")
-                              : word       ? "'" + value + "'"
-                                           : value;
+        !onOff && (o.values.find('|') != std::string::npos || o.values.find(',') != std::string::npos);
+    const std::string shown = onOff ? (value == "on" ? "True" : "False") : word ? "'" + value + "'" : value;
     doc += "\n  " + o.name + "=" + shown + ": " + o.help +
-           (o.isSwitch() || o.values.size() < 2 ? "" : " (" + o.values + ")");
+           (onOff || o.values.size() < 2 ? "" : " (" + o.values + ")");
   }
   return doc;
 }
