@@ -1,5 +1,5 @@
-// One bake request for every shell (request.h): its option table, and the one entry that reads and bakes files
-// (bake_file.h).
+// One bake request for every shell (request.h): its option table, and the one entry that reads and bakes
+// files (bake_file.h).
 #include "probelights/request.h"
 
 #include <gtest/gtest.h>
@@ -106,7 +106,7 @@ TEST(Request, AFileIsReadIntoTheGridAloneOnlyWhenNothingElseIsNeeded) {
 }
 
 TEST(Request, BakeFileGivesTheSameLightsReadEitherWay) {
-  // Read band by band into the grid (the default request) or whole (pixels kept): the same lights, bit for bit.
+  // Read into the grid (the default request) or whole (pixels kept): the same lights, bit for bit.
   BakeRequest grid;
   grid.bake.lights = 32;
   BakeRequest whole = grid;

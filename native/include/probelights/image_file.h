@@ -1,5 +1,5 @@
-// Probes and images read from files with OpenImageIO: in probelights_io, which the CLI, the tests and the full
-// Python module link; the portable core (the Blender add-on's module) has none of it and takes pixels.
+// Probes and images read from files with OpenImageIO: in probelights_io, which the CLI, the tests and the
+// full Python module link; the portable core (the Blender add-on's module) has none of it and takes pixels.
 #pragma once
 
 #include <functional>
