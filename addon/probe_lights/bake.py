@@ -113,12 +113,11 @@ def bake_world(context, settings, progress=lambda fraction: None, rendered=None,
         del world[IMAGE_KEY]
     context.view_layer.update()  # drivers and the rig put the lamps where they shine from
     lamps_ms = 1000 * (time.perf_counter() - bake_done)
-    notes = [n for n in baked["notes"] if not _native_warning(n)]
+    # The panel's notes say what was chosen; the figures behind a choice stay in the core's JSON.
+    notes = [n.split(" (")[0].replace(" kept and finished", " kept") for n in baked["notes"]
+             if not _native_warning(n)]
     total = float(np.dot(baked["total_rgb"], LUM))
     captured = float(np.sum(baked["lights"]["rgb"] @ LUM))
-    if refit and total > 0:
-        # Less than 100 %: a wide sun gives a facing surface more light than its strength (docs/blender.md).
-        notes.append("Refit: the lamps' strengths sum to %.1f %% of the world's light" % (100.0 * captured / total))
     warnings += [n for n in baked["notes"] if _native_warning(n)]
     offer = cycles_settings.advice(scene, len(lights))
     if offer:
@@ -130,7 +129,7 @@ def bake_world(context, settings, progress=lambda fraction: None, rendered=None,
     noise = cycles_settings.noise_note(scene, len(lights))
     if noise:
         warnings.append(noise)
-    if scene.render.engine == "CYCLES" and settings.light_type == "SUN":
+    elif scene.render.engine == "CYCLES" and settings.light_type == "SUN":
         # What more suns cost the renders: a note (nothing is wrong with the bake), shown in the panel.
         advice = render_cost.count_note(len(lights), bpy.app.version)
         if advice:

@@ -102,8 +102,8 @@ def _draw_results(layout, context, width, measure):
                                                                    settings.last_ms), width, measure, icon="CHECKMARK")
         _lines(col, "From " + settings.last_source, width, measure, icon="BLANK1")
         if settings.last_diffuse_error >= 0:
-            _lines(col, "Estimated error: diffuse %.2f %%, shadow %.2f %%" % (settings.last_diffuse_error,
-                                                                            settings.last_shadow_error),
+            _lines(col, "Error: diffuse %.2f %%, shadow %.2f %%" % (settings.last_diffuse_error,
+                                                                  settings.last_shadow_error),
                    width, measure, icon="BLANK1")
         for note in filter(None, settings.last_notes.split("\n")):
             _lines(col, note, width, measure, icon="INFO")

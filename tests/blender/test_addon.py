@@ -154,11 +154,12 @@ def test_estimated_errors_and_count_by_tolerance():
         len(lights), settings.last_diffuse_error, settings.last_shadow_error))
     refit = bake(count=16, refit=True)
     assert len(refit) == 16
-    # Refit is the default and says where the strengths went; a count past what it takes bakes without it, saying
-    # so.
+    # Refit is the default, and the results say where the strengths went (a wide sun gives a facing surface more
+    # light than its strength, so they sum to less than the world's); a count past what it takes bakes without
+    # it, saying so.
     assert bpy.context.scene.probe_lights.bl_rna.properties["refit"].default is True
     bake(count=16)
-    assert "Refit: the lamps' strengths sum to 9" in settings.last_notes, settings.last_notes
+    assert 85.0 < settings.last_energy < 100.0, settings.last_energy
     many = bake(count=300)
     assert len(many) == 300 and "Refit takes at most 256 lights" in settings.last_warnings, settings.last_warnings
 
@@ -172,6 +173,11 @@ def test_more_suns_than_pay_off_are_reported_with_this_versions_measurements():
     bake(count=best)
     assert "no closer in Cycles" not in settings.last_notes + settings.last_warnings, settings.last_notes
     bake(count=2 * best)
+    if not hasattr(bpy.context.scene.cycles, "use_light_tree"):
+        # Cycles 3.x: the warning that many lamps render noisily says it, once.
+        assert "no light tree" in settings.last_warnings, settings.last_warnings
+        assert "More than" not in settings.last_notes, settings.last_notes
+        return
     measured = render_cost.measured_version(bpy.app.version)
     assert "More than %d suns" % best in settings.last_notes, settings.last_notes
     assert "no closer in Cycles %d.%d" % measured[:2] in settings.last_notes, settings.last_notes
@@ -727,7 +733,7 @@ def test_panel_draws_at_default_width_in_this_blender():
         ui.draw_panel(RecordingLayout(log), context)
         labels = [text for kind, text in log if kind == "label"]
         assert ("operator", "probe_lights.bake") in log and ("operator", "probe_lights.cycles_settings") in log
-        assert any("Estimated error" in t for t in labels) and len(labels) > 20, labels
+        assert any("Error: diffuse" in t for t in labels) and len(labels) > 20, labels
         assert not ui.OVERFLOW, (region_type, ui.OVERFLOW)
     print("  panel drawn at 303 and 229 px: %d labels, none cut" % len(labels))
 
