@@ -12,7 +12,7 @@ import time
 import bpy
 import numpy as np
 
-from . import cycles_settings, eevee_settings, native, render_cost
+from . import cycles_settings, eevee_settings, light_kinds, native, render_cost
 from .conversion import sun_profile
 from .errors import ProbeError
 from .light_objects import baked_worlds, make_lights, remove_collection_if_empty, remove_lights, world_collection
@@ -78,7 +78,8 @@ def bake_world(context, settings, progress=lambda fraction: None, rendered=None,
     pixels, projection, described, source, warnings = world_probe(world, rendered)
     probe_ms = 1000 * (time.perf_counter() - start)
     progress(0.5)
-    # The errors are estimated on the probe grouped to 512 pixels wide: ~50 ms at any probe size.
+    kind = light_kinds.kind(settings.light_type)
+    # The errors are estimated on the probe grouped to 512 pixels wide: the same small cost at any probe size.
     max_error = settings.max_error / 100.0 if settings.count_mode == "TOLERANCE" else 0.0
     # The refit takes at most native.max_refit_lights() lights unless a tolerance picks the count (it stops there).
     refit = settings.refit and (max_error > 0 or settings.count <= native.max_refit_lights())
@@ -87,13 +88,13 @@ def bake_world(context, settings, progress=lambda fraction: None, rendered=None,
                                                                                       settings.count))
     try:
         # With the refit, lights start at their regions' energy^2 centroids (towards the brightest light): with
-        # directions and colours refit, shadows came out closer on 15 probes of 15 at 16 suns (README).
+        # directions and colours refit, shadows came out closer on every probe tried (docs/shadows.md).
         baked = native.bake(pixels, projection=projection, method=cut_method(settings.method), lights=settings.count,
                             centroid="energy2" if refit else "energy",
                             resolution=settings.resolution, evaluate=True, effects="diffuse,shadow",
                             evaluator_width=512, refit=refit, move_directions=refit,
                             max_error=max_error, nonfinite=settings.non_finite,
-                            sun_angles=NATIVE_SUN_ANGLES[settings.shadows] if settings.light_type == "SUN" else "points",
+                            sun_angles=NATIVE_SUN_ANGLES[settings.shadows] if kind.soft else "points",
                             sun_profile=sun_profile(bpy.app.version),
                             cuts=cuts(settings.method, max_error > 0))
     except ProbeError as e:
@@ -129,7 +130,7 @@ def bake_world(context, settings, progress=lambda fraction: None, rendered=None,
     noise = cycles_settings.noise_note(scene, len(lights))
     if noise:
         warnings.append(noise)
-    elif scene.render.engine == "CYCLES" and settings.light_type == "SUN":
+    elif scene.render.engine == "CYCLES" and kind.render_cost:
         # What more suns cost the renders: a note (nothing is wrong with the bake), shown in the panel.
         advice = render_cost.count_note(len(lights), bpy.app.version)
         if advice:

@@ -14,6 +14,7 @@ import bpy
 import numpy as np
 from mathutils import Matrix, Vector
 
+from . import light_kinds
 from .conversion import point_parameters, sun_parameters
 
 COLLECTION_TAG = "probe_lights_collection"
@@ -153,7 +154,7 @@ def _drive(owner, path, index, expression, name, socket, socket_index=None):
     driver.expression = expression  # a simple expression: evaluated without Python, also with auto-run off
 
 
-def make_lights(scene, world, baked, source, light_type="SUN", distance=10.0,
+def make_lights(scene, world, baked, source, light_type=light_kinds.DEFAULT, distance=10.0,
                 lights_diffuse=True, lights_glossy=False):
     """Creates one lamp per baked light under `world`'s rig. `baked` is the module's result (directions in the
     probe's frame); `source` (world_graph.ProbeSource) says how the world turns the probe (world_from_probe, the
@@ -163,9 +164,11 @@ def make_lights(scene, world, baked, source, light_type="SUN", distance=10.0,
     lights_diffuse / lights_glossy: which effects the lamps provide (the world keeps the others, world_mix.py), set
     both as Cycles ray visibility and as EEVEE's diffuse/specular factors."""
     collection = _collection(scene, world)
-    bounds = scene_bounds(scene) if light_type == "SUN" else None
-    centre, radius = (bounds[0], max(1.0, 1.5 * bounds[1])) if bounds else ((0.0, 0.0, 0.0), distance)
-    if light_type != "SUN":
+    kind = light_kinds.kind(light_type)
+    if kind.on_dome:  # where a sun is does not change its light: around the scene, drawn small
+        bounds = scene_bounds(scene)
+        centre, radius = (bounds[0], max(1.0, 1.5 * bounds[1])) if bounds else ((0.0, 0.0, 0.0), distance)
+    else:
         centre, radius = (0.0, 0.0, 0.0), distance
     holder = _rig(collection, world, source, centre, radius)
 
@@ -193,7 +196,7 @@ def make_lights(scene, world, baked, source, light_type="SUN", distance=10.0,
             obj[OBJECT_TAG] = 1
             collection.objects.link(obj)
         obj.parent = holder
-        if light_type == "SUN":
+        if kind.soft:
             p = sun_parameters(direction, rgb, lights["angle"][i], bpy.app.version)  # the core's angle: fitted or 0
             data.angle = p["angle"]
             # Drawn small: the viewport draws a sun's direction line in object space; Cycles and EEVEE use only the

@@ -3,6 +3,8 @@
 import bpy
 from bpy.props import BoolProperty, CollectionProperty, EnumProperty, FloatProperty, IntProperty, StringProperty
 
+from . import light_kinds
+
 METHODS = [("auto", "Auto", "Variance minimization and median cut: at 16 lights or fewer each fitted and the lights "
                             "that fit the world's light better kept (a second fit: about 0.1 s); above, each started "
                             "and the better fitted alone (about 0.07 s at 64 suns)"),
@@ -11,8 +13,7 @@ METHODS = [("auto", "Auto", "Variance minimization and median cut: at 16 lights 
            ("variance", "Variance minimization", "Cut where the light's spread is least (Viriyothai & Debevec 2009)"),
            ("median-cut", "Median cut", "Equal-energy regions (Debevec 2005)"),
            ("sh", "Spherical harmonics", "Cells of equal SH energy by hierarchical warping (Jarosz 2009, Berger 2011)")]
-LIGHT_TYPES = [("SUN", "Sun", "Sun lamps: parallel light, each with a soft shadow fitted to its region's light"),
-               ("POINT", "Point", "Point lamps on a sphere around the origin")]
+LIGHT_TYPES = light_kinds.enum_items()
 # The suns' angles (the core's sun_angles: fit, spread, points).
 SHADOWS = [("FIT", "Fitted", "Soft shadows: each sun's angle chosen so its shadow matches the probe's light (the "
             "estimated shadow error, on a sphere over a plane)"),
@@ -35,7 +36,7 @@ def bake_settings():
         "count": IntProperty(name="Lights", description="How many lights to make", default=64, min=1,
                              soft_max=1024, max=4096),
         "method": EnumProperty(name="Method", items=METHODS, default="auto"),
-        "light_type": EnumProperty(name="Light type", items=LIGHT_TYPES, default="SUN"),
+        "light_type": EnumProperty(name="Light type", items=LIGHT_TYPES, default=light_kinds.DEFAULT),
         "resolution": EnumProperty(name="Working resolution", items=RESOLUTIONS, default="auto"),
         "shadows": EnumProperty(name="Shadows", items=SHADOWS, default="FIT",
                                 description="How soft each sun's shadow is (its angle)"),

@@ -3,7 +3,7 @@ widths: short labels, enums as buttons, and every long line (results, notes, war
 
 import bpy
 
-from . import cycles_settings, eevee_settings, native
+from . import cycles_settings, eevee_settings, light_kinds, native
 from .bake import image_changed
 from .light_objects import baked_worlds, world_collection
 from .text_fit import fits, wrap
@@ -54,10 +54,7 @@ def draw_panel(layout, context):
     col.prop(settings, "count" if settings.count_mode == "COUNT" else "max_error")
     col = layout.column(align=True)
     col.row(align=True).prop(settings, "light_type", expand=True)
-    if settings.light_type == "SUN":
-        col.prop(settings, "shadows")
-    else:
-        col.prop(settings, "distance")
+    col.prop(settings, light_kinds.kind(settings.light_type).setting)
     col.prop(settings, "refit")
     if settings.method != "sh":  # the SH method does not cut on a working grid
         row = col.row(align=True)
