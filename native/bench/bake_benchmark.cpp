@@ -19,7 +19,7 @@
 #include <memory>
 
 #include "../src/parallel.h"
-#include "probelights/bake.h"
+#include "probelights/placement.h"
 
 namespace {
 

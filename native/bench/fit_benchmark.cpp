@@ -16,7 +16,7 @@
 #include <optional>
 #include <utility>
 
-#include "probelights/accuracy.h"
+#include "probelights/bake.h"
 #include "probelights/image_file.h"
 
 namespace {

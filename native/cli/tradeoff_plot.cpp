@@ -75,12 +75,18 @@ void writeTradeoffPlot(const std::vector<TradeoffRow>& rows, Effects effects, co
   OIIO::ImageBufAlgo::render_box(img, left, top, W - right, H - bottom, black);
   text(left, 32, title, 20, black);
   text(left + (W - left - right) / 2 - 80, H - 20, "bake time (ms, log)", 16, black);
-  const std::map<Method, std::array<float, 3>> colours{{Method::MedianCut, {0.85f, 0.2f, 0.1f}},
-                                                       {Method::Variance, {0.1f, 0.35f, 0.85f}},
-                                                       {Method::SphericalHarmonics, {0.1f, 0.6f, 0.2f}}};
+  // One colour per registered method, in their order (placement.h).
+  const std::array<std::array<float, 3>, 6> palette{{{0.85f, 0.2f, 0.1f},
+                                                     {0.1f, 0.35f, 0.85f},
+                                                     {0.1f, 0.6f, 0.2f},
+                                                     {0.6f, 0.2f, 0.7f},
+                                                     {0.9f, 0.6f, 0.1f},
+                                                     {0.3f, 0.3f, 0.3f}}};
   int legend = top + 10;
-  for (auto [method, colour] : colours)
+  for (std::size_t m = 0; m < placementMethods().size(); ++m)
     for (bool refit : {false, true}) {
+      const Method method = placementMethods()[m].method;
+      const std::array<float, 3>& colour = palette[m % palette.size()];
       std::vector<const TradeoffRow*> curve;
       for (const auto& r : pts)
         if (r.method == method && r.refit == refit) curve.push_back(&r);

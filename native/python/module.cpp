@@ -9,7 +9,7 @@
 
 #include <string>
 
-#include "probelights/bake.h"
+#include "probelights/placement.h"
 #if PROBELIGHTS_MODULE_IO
 #include "probelights/bake_file.h"
 #include "probelights/batch.h"
@@ -252,6 +252,13 @@ std::string optionsDoc() {
   return doc;
 }
 
+// Every registered placement method's name (placement.h).
+std::vector<std::string> methodNames() {
+  std::vector<std::string> names;
+  for (const PlacementMethod& m : placementMethods()) names.push_back(m.name);
+  return names;
+}
+
 // The tradeoff grid (tradeoff.h) in the layout of the CLI's tradeoff JSON (result_layout.h).
 py::dict tradeoffRows(Pixels pixels, const std::string& projection, const std::string& effects,
                       const std::vector<int>& counts, const std::vector<std::string>& methods, bool refit,
@@ -344,8 +351,8 @@ PYBIND11_MODULE(_probelights, m) {
   m.def(
       "tradeoff", &tradeoffRows, py::arg("pixels"), py::kw_only(), py::arg("projection") = "latlong",
       py::arg("effects") = "diffuse,shadow", py::arg("counts") = std::vector<int>{4, 8, 16, 32, 64, 128, 256},
-      py::arg("methods") = std::vector<std::string>{"median-cut", "variance", "sh"}, py::arg("refit") = true,
-      py::arg("evaluator_width") = 2048, py::arg("sun_profile") = "cone", py::arg("nonfinite") = "error",
+      py::arg("methods") = methodNames(), py::arg("refit") = true, py::arg("evaluator_width") = 2048,
+      py::arg("sun_profile") = "cone", py::arg("nonfinite") = "error",
       "What accuracy costs in time, in the layout of the CLI's tradeoff JSON: source, effects, error, and "
       "rows: a dict of columns (method, lights, made, resolution, refit, bake_ms, each effect's error), one "
       "entry per (method, count, refit).");

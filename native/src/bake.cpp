@@ -1,136 +1,110 @@
 #include "probelights/bake.h"
 
 #include <cstdio>
-#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
 
-#include "parallel.h"
 #include "probelights/error.h"
-#include "probelights/median_cut.h"
-#include "probelights/names.h"
-#include "probelights/sh_lights.h"
-#include "probelights/stopwatch.h"
-#include "probelights/variance_minimization.h"
 
 namespace probelights {
 
-namespace {
-constexpr NameTable<Method, 7> kMethods{{{Method::MedianCut, "median-cut"},
-                                         {Method::MedianCut, "mediancut"},
-                                         {Method::MedianCut, "median"},
-                                         {Method::Variance, "variance"},
-                                         {Method::Variance, "variance-minimization"},
-                                         {Method::SphericalHarmonics, "sh"},
-                                         {Method::SphericalHarmonics, "spherical-harmonics"}}};
-}  // namespace
-
-std::string toString(Method method) { return nameOf(kMethods, method); }
-Method parseMethod(const std::string& name) { return parseName(kMethods, "method", name); }
-
-namespace {
-
-PixelCut toPixels(const MomentTable& table, const Cut& cut) {
-  Rect r = table.toPixels(cut.region);
-  int position = std::min(cut.position * table.cellSize(), cut.axis == Axis::X ? r.x1 : r.y1);
-  return {r, cut.axis, position};
+bool bakesOnGridAlone(const BakeOptions& options, const AccuracyOptions& a) {
+  return usesWorkingGrid(options.method) && !a.evaluate && !a.refit && !(a.maxError > 0) &&
+         a.cuts == CutChoice::One;
 }
 
-// Says which channels of the probe sum to no light at all (much negative light, e.g. an over-sharpened
-// probe): lamps cannot be negative, so the lights carry none of such a channel (lights.cpp) and do not add
-// up to it.
-void noteNonPositiveChannels(BakeResult& result) {
-  static const char* kNames[3] = {"red", "green", "blue"};
-  for (int k = 0; k < 3; ++k)
-    if (!(result.totalRgb[k] > 0)) {
-      char line[200];
+EvaluatedBake bakeOnGrid(const Probe& probe, const MomentTable& table, double tablesMs,
+                         const BakeOptions& options, SunAngles angles) {
+  EvaluatedBake out;
+  out.cut = options.method;
+  out.bake = bake(probe, table, options);
+  applySunAngles(angles, nullptr, out.bake.lights);
+  out.sunAngles = angles == SunAngles::Points ? SunAngles::Points : SunAngles::Spread;
+  out.bake.timings.tablesMs = tablesMs;
+  out.count = options.lights;
+  if (!probe.hasPixels())
+    out.bake.notes.insert(out.bake.notes.begin(), "read band by band into a working grid of " +
+                                                      std::to_string(table.width()) + "x" +
+                                                      std::to_string(table.height()) +
+                                                      " cells, never whole (tables built during the load)");
+  return out;
+}
+
+EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOptions a,
+                            const WorkingGrid* prebuilt) {
+  if (!(a.maxError >= 0 && a.maxError < 1)) {
+    char got[32];
+    std::snprintf(got, sizeof got, "%g", a.maxError);
+    throw Error(std::string("the error tolerance is a fraction in (0, 1), e.g. 0.01 for 1 %; got ") + got);
+  }
+  EvaluatedBake out;
+  out.cut = options.method;
+  const bool twoCuts = a.cuts != CutChoice::One;
+  if (twoCuts && options.method != Method::Variance && options.method != Method::MedianCut)
+    throw Error("both cuts are variance and median cut: bake with one of them");
+  if (twoCuts && a.maxError > 0) throw Error("both cuts take a light count, not an error tolerance");
+  const bool evaluating = a.evaluate || a.refit || a.maxError > 0 || twoCuts;
+  if (a.refit) a.effects |= kDiffuse;
+  if (!evaluating) {
+    out.bake = prebuilt ? prebuilt->bake(probe, options) : bake(probe, options);
+    out.count = options.lights;
+    applySunAngles(a.sunAngles, nullptr, out.bake.lights);
+    out.sunAngles = a.sunAngles == SunAngles::Points ? SunAngles::Points : SunAngles::Spread;
+    return out;
+  }
+  // One working grid for the bakes and the evaluator's samples (no second pass over the pixels).
+  std::optional<WorkingGrid> built;
+  const WorkingGrid& grid = prebuilt ? *prebuilt : built.emplace(probe, options);
+  const EvaluatorOptions evaluatorOptions{a.evaluatorWidth, a.refit, a.sunProfile};
+  const Evaluator evaluator = grid.table() ? Evaluator(probe, *grid.table(), a.effects, evaluatorOptions)
+                                           : Evaluator(probe, a.effects, evaluatorOptions);
+  if (a.maxError > 0) {
+    AutoCountResult chosen =
+        autoCount(probe, evaluator, options, a.maxError, a.refit, 1024, a.moveDirections, &grid, a.sunAngles);
+    out.bake = std::move(chosen.bake);
+    out.autoCount = true, out.met = chosen.met, out.tried = std::move(chosen.tried),
+    out.count = chosen.lights;
+    char line[200];
+    if (chosen.met)
+      std::snprintf(line, sizeof line, "auto count: %d lights, worst error %.2f%% (asked at most %.2f%%)",
+                    chosen.lights, 100 * chosen.errors.worst(a.effects), 100 * a.maxError);
+    else
       std::snprintf(line, sizeof line,
-                    "the probe's %s light sums to %.4g, not above 0 (negative samples): lamps cannot be "
-                    "negative, so the lights carry no %s",
-                    kNames[k], result.totalRgb[k], kNames[k]);
-      result.notes.push_back(line);
-    }
-}
-
-}  // namespace
-
-BakeResult bake(const Probe& probe, const BakeOptions& options) {
-  checkLightCount(options.lights);
-  probe.requirePixels("baking");
-  BakeResult result;
-  if (options.method == Method::SphericalHarmonics) {
-    ShLightResult sh = shLights(probe, {options.lights, options.shBands, options.shEpsilon, options.shDepth});
-    result.lights = std::move(sh.lights);
-    for (const Light& l : result.lights) result.regions.push_back(l.rect);
-    result.regionsAreRects = false;
-    result.notes = std::move(sh.notes);
-    result.timings = {sh.projectMs, sh.assignMs, sh.lightsMs};
-    result.totalRgb = probe.integral();  // an independent pass: the lights must add up to it
-    noteNonPositiveChannels(result);
-    return result;
-  }
-
-  Stopwatch t;
-  const MomentTable table(probe, options.resolution.cellSize(probe.width()), options.centroid);
-  const double tablesMs = t.ms();
-  result = bake(probe, table, options);
-  result.timings.tablesMs = tablesMs;
-  return result;
-}
-
-WorkingGrid::WorkingGrid(const Probe& probe, const BakeOptions& options, PixelReport* counts) {
-  if (!usesWorkingGrid(options.method)) {
-    if (counts) *counts = probe.countPixels();
-    return;
-  }
-  Stopwatch t;
-  table_.emplace(probe, options.resolution.cellSize(probe.width()), options.centroid, counts);
-  buildMs_ = t.ms();
-}
-
-BakeResult WorkingGrid::bake(const Probe& probe, const BakeOptions& options) const {
-  if (!table_) return probelights::bake(probe, options);
-  BakeResult r = probelights::bake(probe, *table_, options);
-  r.timings.tablesMs = buildMs_;
-  return r;
-}
-
-BakeResult bake(const Probe& probe, const MomentTable& table, const BakeOptions& options) {
-  checkLightCount(options.lights);
-  if (!usesWorkingGrid(options.method)) throw Error("the sh method bakes without a working grid");
-  BakeResult result;
-  result.cellSize = table.cellSize();
-  result.totalRgb = table.integral();
-
-  Stopwatch t;
-  std::unique_ptr<CutRule> rule;
-  if (options.method == Method::MedianCut)
-    rule = std::make_unique<MedianCutRule>(probe.projection());
-  else
-    rule = std::make_unique<VarianceMinimizationRule>();
-  int horizonRow = -1;
-  if (options.splitAtHorizon && probe.projection().kind() == ProjectionKind::LatLong)
-    horizonRow = (probe.height() / 2 + table.cellSize() / 2) / table.cellSize();  // nearest cell border
-  Partition partition = partitionSphere(table, *rule, options.lights, horizonRow);
-  result.horizonSplit = partition.horizonCut;
-  result.timings.partitionMs = t.ms();
-
-  for (const Rect& r : partition.regions) result.regions.push_back(table.toPixels(r));
-  for (const Cut& c : partition.cuts) result.cuts.push_back(toPixels(table, c));
-  result.notes = partition.notes;
-
-  t.restart();
-  if (table.hasCellSums() && (options.centroid == CentroidWeight::Energy || table.hasSecondMoments())) {
-    // A coarse grid kept each cell's exact sums: a region's sums are those of its cells (no second image
-    // pass).
-    std::vector<PixelSums> sums(partition.regions.size());
-    parallelFor(static_cast<std::int64_t>(sums.size()),
-                [&](std::int64_t i) { sums[i] = table.cellSums(partition.regions[i]); });
-    result.lights = lightsFromSums(probe, result.regions, sums, options.centroid);
+                    "no count met the tolerance of %.2f%%: using %d lights, the lowest error found (%.2f%%)",
+                    100 * a.maxError, chosen.lights, 100 * chosen.errors.worst(a.effects));
+    out.bake.notes.push_back(line);
   } else {
-    result.lights = lightsFromRegions(probe, result.regions, options.centroid);
+    out.bake = grid.bake(probe, options);
+    out.count = options.lights;
+    if (a.refit && out.bake.lights.size() > kMaxRefitLights)
+      throw Error("the refit takes at most " + std::to_string(kMaxRefitLights) + " lights");
+    if (twoCuts) {
+      ChosenCut chosen = chooseCut(probe, grid, evaluator, options, std::move(out.bake), a.cuts, a.refit,
+                                   a.moveDirections, a.sunAngles);
+      out.bake = std::move(chosen.bake), out.cut = chosen.cut, out.energyShift = chosen.energyShift;
+    } else {
+      out.bake.lights = finishLights(evaluator, std::move(out.bake.lights), a.refit, a.moveDirections,
+                                     a.sunAngles, &out.energyShift);
+    }
   }
-  result.timings.lightsMs = t.ms();
-  noteNonPositiveChannels(result);
-  return result;
+  out.evaluated = true;
+  out.refit = a.refit;
+  out.effects = a.effects;
+  out.sunAngles = a.sunAngles == SunAngles::Fit && !(a.effects & kShadow) ? SunAngles::Spread : a.sunAngles;
+  out.sunProfile = a.sunProfile;
+  out.errors = evaluator.evaluate(out.bake.lights);
+  return out;
+}
+
+EvaluatedBake bakeBuffer(ImageView view, ProjectionKind projection, NonFinitePolicy nonFinite,
+                         const BakeOptions& options, const AccuracyOptions& accuracy,
+                         std::optional<Probe>& probe) {
+  probe.emplace(Probe::unchecked(view, projection));
+  PixelReport counts;
+  const WorkingGrid grid(*probe, options, &counts);
+  probe->settle(counts, nonFinite);
+  return bakeEvaluated(*probe, options, accuracy, &grid);
 }
 
 }  // namespace probelights

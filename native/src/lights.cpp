@@ -96,8 +96,8 @@ std::vector<Light> lightsFromSums(const Probe& probe, const std::vector<Rect>& r
   // Each deficit is taken from the lights nearest it, as much from each as it has (a light ends at 0, never
   // below), so the lights carry the probe's integral exactly whenever that is positive; only the part of a
   // channel whose whole integral is not positive is left out (its light cannot be a lamp), and the bake says
-  // so (bake.cpp, noteNonPositiveChannels). The nearest light that still has some is found by a scan each
-  // time: a deficit usually ends at the first (a sort per deficit cost L log L, and up to 65536 lights).
+  // so (placement.cpp, noteNonPositiveChannels). The nearest light that still has some is found by a scan
+  // each time: a deficit usually ends at the first (a sort per deficit cost L log L, and up to 65536 lights).
   for (const Deficit& d : deficits)
     for (int k = 0; k < 3; ++k) {
       double owed = -d.rgb[k];

@@ -23,6 +23,22 @@ std::string real(double v) {
 
 std::string onOff(bool v) { return v ? "on" : "off"; }
 
+// The method option's values and help, from the registered methods (placement.h): "a|b|c", "the cut: A, B
+// or C".
+std::string methodValues() {
+  std::string out;
+  for (const PlacementMethod& m : placementMethods()) out += (out.empty() ? "" : "|") + m.name;
+  return out;
+}
+
+std::string methodHelp() {
+  const auto& methods = placementMethods();
+  std::string out = "the cut: ";
+  for (std::size_t i = 0; i < methods.size(); ++i)
+    out += (i == 0 ? "" : i + 1 == methods.size() ? " or " : ", ") + methods[i].label;
+  return out;
+}
+
 using R = BakeRequest;
 using S = const std::string&;
 
@@ -36,9 +52,7 @@ RequestOption option(std::string name, std::string values, std::string help,
 std::vector<RequestOption> makeOptions() {
   return {
       option(
-          "method", "median-cut|variance|sh",
-          "the cut: median cut, variance minimization or SH importance warping",
-          [](R& r, S, S v) { r.bake.method = parseMethod(v); },
+          "method", methodValues(), methodHelp(), [](R& r, S, S v) { r.bake.method = parseMethod(v); },
           [](const R& r) { return toString(r.bake.method); }),
       option(
           "lights", "N", "number of lights, N >= 1", [](R& r, S o, S v) { r.bake.lights = parseCount(o, v); },

@@ -18,8 +18,8 @@ std::vector<TradeoffRow> tradeoff(const Probe& probe, const Evaluator& evaluator
   std::vector<TradeoffRow> rows;
   for (Method method : o.methods)
     for (const WorkingResolution& res : o.resolutions) {
-      // The SH method does not use the working grid: one resolution is enough.
-      if (method == Method::SphericalHarmonics && &res != &o.resolutions.front()) continue;
+      // A method that cuts no working grid (sh): one resolution is enough.
+      if (!usesWorkingGrid(method) && &res != &o.resolutions.front()) continue;
       // One working grid per resolution for every count; each row's time still includes its build, so a row
       // says what one bake at that count costs.
       BakeOptions b;
@@ -29,8 +29,7 @@ std::vector<TradeoffRow> tradeoff(const Probe& probe, const Evaluator& evaluator
       for (int n : o.counts) {
         b.lights = n;
         BakeResult r = grid.bake(probe, b);
-        const auto resName =
-            method == Method::SphericalHarmonics ? std::nullopt : std::optional<WorkingResolution>(res);
+        const auto resName = usesWorkingGrid(method) ? std::optional<WorkingResolution>(res) : std::nullopt;
         // A row's time includes what finishing its lights took (the angle fit, the refit).
         Stopwatch plain;
         const auto lights = finishLights(evaluator, r.lights, false, false, o.sunAngles);

@@ -3,7 +3,7 @@
 // finished alone.
 #include <gtest/gtest.h>
 
-#include "probelights/accuracy.h"
+#include "probelights/bake.h"
 #include "probelights/error.h"
 #include "probelights/image_file.h"
 #include "probelights/refit.h"

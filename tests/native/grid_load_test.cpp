@@ -10,10 +10,10 @@
 #include <filesystem>
 #include <limits>
 
-#include "probelights/bake.h"
 #include "probelights/error.h"
 #include "probelights/evaluate.h"
 #include "probelights/image_file.h"
+#include "probelights/placement.h"
 #include "probelights/preview.h"
 
 namespace fs = std::filesystem;

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "probelights/bake.h"
+#include "probelights/placement.h"
 #include "test_probes.h"
 
 namespace probelights {

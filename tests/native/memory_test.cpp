@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "probelights/bake.h"
+#include "probelights/placement.h"
 #include "test_probes.h"
 
 namespace probelights {

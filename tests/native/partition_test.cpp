@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-#include "probelights/bake.h"
+#include "probelights/placement.h"
 #include "test_probes.h"
 
 namespace probelights {

@@ -14,10 +14,10 @@
 #include <limits>
 #include <optional>
 
-#include "probelights/accuracy.h"
 #include "probelights/bake.h"
 #include "probelights/error.h"
 #include "probelights/image_file.h"
+#include "probelights/placement.h"
 #include "test_probes.h"
 
 namespace fs = std::filesystem;

@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "probelights/accuracy.h"
+#include "probelights/bake.h"
 #include "probelights/error.h"
 #include "probelights/image_file.h"
 #include "test_probes.h"

@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "probelights/accuracy.h"
+#include "probelights/bake.h"
 #include "probelights/error.h"
 #include "probelights/image_file.h"
 #include "test_probes.h"

@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-#include "probelights/bake.h"
+#include "probelights/placement.h"
 #include "probelights/probe.h"
 
 namespace probelights::testing {

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <random>
 
-#include "probelights/bake.h"
+#include "probelights/placement.h"
 #include "test_probes.h"
 
 namespace probelights {

@@ -1,87 +1,76 @@
-// The whole path from a probe to its lights, with timings: what the CLI, the Python module and benchmarks
-// call.
+// A bake, the whole path from a probe to lights ready to render, with its accuracy measured. The steps, each
+// in its own room:
+//   placement.h      the probe divided into N regions by a method, a light each (the working grid, the cuts)
+//   finish_lights.h  the sun angles and the irradiance refit
+//   cut_choice.h     both cuts tried and the better kept
+//   auto_count.h     the fewest lights that meet a tolerance
+//   evaluate.h       the errors of the lights on the effects asked for
+// bakeEvaluated runs them as AccuracyOptions ask. Shells fill a request (request.h) rather than call it.
 #pragma once
 
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
-#include "probelights/lights.h"
-#include "probelights/moment_table.h"
-#include "probelights/partition.h"
-#include "probelights/probe.h"
+#include "probelights/auto_count.h"
+#include "probelights/cut_choice.h"
+#include "probelights/evaluate.h"
+#include "probelights/finish_lights.h"
+#include "probelights/placement.h"
+#include "probelights/sun_angles.h"
 
 namespace probelights {
 
-enum class Method { MedianCut, Variance, SphericalHarmonics };
-std::string toString(Method method);
-Method parseMethod(const std::string& name);  // throws Error naming the choices
-
-struct BakeOptions {
-  Method method = Method::Variance;
-  int lights = 16;
-  CentroidWeight centroid = CentroidWeight::Energy;
-  WorkingResolution resolution;
-  // Lat-long probes: make the first cut at the horizon so no light mixes sky and ground (partition.h). Off
-  // gives the papers' algorithms exactly.
-  bool splitAtHorizon = false;
-  // Method::SphericalHarmonics (sh_lights.h): bands of the projection, Berger's epsilon, warping depth.
-  int shBands = 8;
-  double shEpsilon = 0.01;
-  int shDepth = 8;
+// One bake with the accuracy options the CLI and the add-on offer: `maxError` > 0 picks the count
+// (autoCount), `refit` refits the lights' colours, and any of them (or `evaluate`) measures the errors on
+// `effects`.
+struct AccuracyOptions {
+  Effects effects = kDiffuse;
+  bool evaluate = false, refit = false;
+  double maxError = 0;
+  int evaluatorWidth = 2048;    // EvaluatorOptions::maxWidth (the add-on's quick estimate uses 512)
+  bool moveDirections = false;  // the refit also moves directions (refit.h)
+  // The lights' angles (sun_angles.h), fitted when shadows are evaluated, and the renderer's sun they are
+  // judged and fitted as (cone.h).
+  SunAngles sunAngles = SunAngles::Fit;
+  SunProfile sunProfile = SunProfile::Cone;
+  // Which cut's lights (CutChoice) when the bake's method is variance or median cut. Not with a tolerance.
+  CutChoice cuts = CutChoice::One;
 };
 
-struct BakeTimings {
-  double tablesMs = 0, partitionMs = 0, lightsMs = 0;
+struct EvaluatedBake {
+  BakeResult bake;
+  bool evaluated = false, autoCount = false, met = false, refit = false;
+  Effects effects;
+  EffectErrors errors;
+  double energyShift = 0;                    // of the refit
+  SunAngles sunAngles = SunAngles::Spread;   // what the lights' angles are: fit only when they were fitted
+  SunProfile sunProfile = SunProfile::Cone;  // the sun they were judged as
+  int count = 0;  // the light count asked for, or chosen when autoCount (bake.lights may hold fewer)
+  Method cut = Method::Variance;              // the method the lights were cut with (the one kept)
+  std::vector<std::pair<int, double>> tried;  // autoCount: (count, worst error) of every count tried
 };
 
-// A cut of the partition in image pixels (the partition's own Cut is in cells of the working grid).
-struct PixelCut {
-  Rect region;
-  Axis axis = Axis::X;
-  int position = 0;
-};
+// `grid`: the probe's working grid for these options if the caller has built it.
+EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOptions accuracy,
+                            const WorkingGrid* grid = nullptr);
 
-struct BakeResult {
-  std::vector<Light> lights;
-  std::vector<Rect>
-      regions;  // every region in pixels (they tile the image), or for "sh" each cell's bounding box
-  bool regionsAreRects = true;
-  std::vector<PixelCut> cuts;  // in the order they were made
-  int cellSize = 1;
-  bool horizonSplit = false;  // whether the first cut is at the horizon
-  Rgb totalRgb{};             // the probe's integral of L over the sphere
-  BakeTimings timings;
-  std::vector<std::string> notes;
-};
+// bakeEvaluated on a caller's buffer (Probe(view, projection, nonFinite)), its pixels checked in the working
+// grid's pass rather than a pass of their own (Probe::unchecked; at 8K the own pass read 537 MB of Blender's
+// RGBA again): the same lights, notes and errors, the same Error for NaN/Inf before any light is made.
+// `probe` receives the probe (its report's notes), set also when the check refuses it.
+EvaluatedBake bakeBuffer(ImageView view, ProjectionKind projection, NonFinitePolicy nonFinite,
+                         const BakeOptions& options, const AccuracyOptions& accuracy,
+                         std::optional<Probe>& probe);
 
-// Throws Error for a bad request (lights < 1 or > kMaxLights).
-BakeResult bake(const Probe& probe, const BakeOptions& options);
+// Whether bakeEvaluated needs nothing of the probe but its working grid: a grid method, and no evaluation,
+// refit or tolerance. Then a file can be read band by band into the grid (grid_load.h) and baked with
+// bakeOnGrid, never holding the image whole.
+bool bakesOnGridAlone(const BakeOptions& options, const AccuracyOptions& accuracy);
 
-// The same on a working grid already built from `probe` (its cell size is the resolution; options.resolution
-// is not read), for callers that bake one probe at several counts: the grid is built once (autoCount, the
-// tradeoff grid; at 8K `auto` the build is most of a bake). timings.tablesMs is 0: the caller knows
-// what the build cost. Not for Method::SphericalHarmonics, which has no grid (throws Error).
-BakeResult bake(const Probe& probe, const MomentTable& table, const BakeOptions& options);
-
-// Whether bake() builds a working grid for `method` (all but spherical harmonics).
-inline bool usesWorkingGrid(Method method) { return method != Method::SphericalHarmonics; }
-
-// The working grid bake(probe, options) would cut on, built once (and timed) for callers that bake one probe
-// several times or sample it otherwise: auto count, the tradeoff grid, the estimate. Holds no grid for the sh
-// method, whose bakes then go the usual way.
-class WorkingGrid {
- public:
-  // `counts`: also check the pixels (Probe::unchecked), in the table's pass when there is a table.
-  WorkingGrid(const Probe& probe, const BakeOptions& options, PixelReport* counts = nullptr);
-  const MomentTable* table() const { return table_ ? &*table_ : nullptr; }
-  // bake(probe, table, options) with timings.tablesMs = the grid's build time (what one bake costs), or
-  // bake(probe, options) without a grid. options.resolution and centroid must be the grid's.
-  BakeResult bake(const Probe& probe, const BakeOptions& options) const;
-
- private:
-  std::optional<MomentTable> table_;
-  double buildMs_ = 0;
-};
+// bakeEvaluated for such a bake, on the grid loadGrid built (tablesMs: its build time, within the load).
+EvaluatedBake bakeOnGrid(const Probe& probe, const MomentTable& table, double tablesMs,
+                         const BakeOptions& options, SunAngles angles);
 
 }  // namespace probelights

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "probelights/bake.h"
 #include "probelights/moment_table.h"
+#include "probelights/placement.h"
 #include "probelights/probe.h"
 
 namespace probelights {

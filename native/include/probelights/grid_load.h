@@ -6,8 +6,8 @@
 
 #include <string>
 
-#include "probelights/bake.h"
 #include "probelights/moment_table.h"
+#include "probelights/placement.h"
 #include "probelights/probe.h"
 
 namespace probelights {

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "probelights/bake.h"
+#include "probelights/placement.h"
 #include "probelights/probe.h"
 
 namespace probelights {

@@ -55,7 +55,7 @@ class Probe {
   // report counts the band's samples and is not settled (no notes, no error): the caller settles their sum.
   static Probe band(const ImageView& view, const Projection& projection);
   // A caller's buffer whose pixels are not checked yet: the first pass that reads them all checks them
-  // instead of a pass of its own (the working grid's: WorkingGrid's `counts`, bakeBuffer in accuracy.h),
+  // instead of a pass of its own (the working grid's: WorkingGrid's `counts`, bakeBuffer in bake.h),
   // and settle() then adds what it counted (countRows) and refuses or notes as the checking constructor
   // would. Nothing but that pass may read its pixels before settle() has accepted them.
   static Probe unchecked(ImageView view, ProjectionKind projection);

@@ -1,5 +1,5 @@
 // Refitting baked lights to the probe's diffuse light: colours by non-negative least squares, and optionally
-// directions by coordinate descent (used by bakeEvaluated, accuracy.h, and the tradeoff grid).
+// directions by coordinate descent (used by finishLights, finish_lights.h, and the tradeoff grid).
 #pragma once
 
 #include <vector>

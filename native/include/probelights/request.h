@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "probelights/accuracy.h"
+#include "probelights/bake.h"
 #include "probelights/probe.h"
 
 namespace probelights {
@@ -59,7 +59,7 @@ bool readsIntoGridAlone(const BakeRequest& request);
 EvaluatedBake bakeLoaded(const Probe& probe, const BakeRequest& request, const MomentTable* grid = nullptr,
                          double tablesMs = 0);
 
-// bakeBuffer (accuracy.h) with a request: a caller's pixels, `projection` given with them.
+// bakeBuffer (bake.h) with a request: a caller's pixels, `projection` given with them.
 EvaluatedBake bakeBuffer(ImageView view, ProjectionKind projection, const BakeRequest& request,
                          std::optional<Probe>& probe);
 

@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "probelights/bake.h"
+#include "probelights/placement.h"
 #include "probelights/probe.h"
 #include "probelights/tradeoff.h"
 

@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "probelights/accuracy.h"
 #include "probelights/bake.h"
 #include "probelights/evaluate.h"
+#include "probelights/placement.h"
 
 namespace probelights {
 
@@ -16,14 +16,14 @@ struct TradeoffRow {
   Method method;
   int lights = 0;                               // asked for
   int made = 0;                                 // made
-  std::optional<WorkingResolution> resolution;  // none for the SH method (it cuts on no working grid)
+  std::optional<WorkingResolution> resolution;  // none for a method that cuts no working grid (sh)
   bool refit = false;
   double bakeMs = 0;  // tables + partition + lights (+ refit)
   EffectErrors errors;
 };
 
 struct TradeoffOptions {
-  std::vector<Method> methods{Method::MedianCut, Method::Variance, Method::SphericalHarmonics};
+  std::vector<Method> methods = everyMethod();
   std::vector<int> counts{1, 2, 4, 8, 16, 32, 64, 128, 256, 512, 1024};
   std::vector<WorkingResolution> resolutions{{WorkingResolution::Mode::Full, 0},
                                              {WorkingResolution::Mode::Width, 256}};

@@ -1,6 +1,7 @@
-// bake(): energy conservation, any N, hard small probes (numerically stable: the whole float range, a hot
-// pixel, all black, the seam), the horizon split, working resolutions, determinism.
-#include "probelights/bake.h"
+// Placement (placement.h): every registered method named, parsed and baking; bake(): energy conservation,
+// any N, hard small probes (numerically stable: the whole float range, a hot pixel, all black, the seam), the
+// horizon split, working resolutions, determinism.
+#include "probelights/placement.h"
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
@@ -10,6 +11,7 @@
 
 #include "probelights/error.h"
 #include "probelights/median_cut.h"
+#include "probelights/request.h"
 #include "probelights/variance_minimization.h"
 #include "test_probes.h"
 
@@ -22,7 +24,14 @@ using testing::maxRelativeDifference;
 using testing::sumRgb;
 using testing::uniformProbe;
 
-constexpr Method kMethods[] = {Method::MedianCut, Method::Variance};
+// The registered methods that cut the working grid (the tests below are about cuts and regions).
+std::vector<Method> gridMethods() {
+  std::vector<Method> out;
+  for (const PlacementMethod& m : placementMethods())
+    if (m.rule) out.push_back(m.method);
+  return out;
+}
+const std::vector<Method> kMethods = gridMethods();
 const WorkingResolution kFull{WorkingResolution::Mode::Full, 0};
 
 void expectFiniteAndConserving(const Probe& probe, const BakeResult& r, double tolerance = 1e-9) {
@@ -60,6 +69,31 @@ testing::TestProbe sunnySky(int W, int H) {
     if (v > 0.5) return Rgb{0.1 + 0.05 * (x % 13) / 13.0, 0.12, 0.08};
     return Rgb{0.3 * (1 - v), 0.5 * (1 - v), 1.0};
   });
+}
+
+// What a new method gets by its registration alone: its names in the options and their usage text, and bakes
+// of finite lights that carry the probe's energy.
+TEST(PlacementMethods, EveryRegisteredMethodIsNamedParsedAndBakes) {
+  const RequestOption& option = requestOption("method");
+  auto t = sunnySky(128, 64);
+  ASSERT_EQ(everyMethod().size(), placementMethods().size());
+  for (const PlacementMethod& m : placementMethods()) {
+    SCOPED_TRACE(m.name);
+    EXPECT_NE(m.rule == nullptr, m.place == nullptr);  // cuts the working grid, or places from the pixels
+    EXPECT_EQ(usesWorkingGrid(m.method), m.rule != nullptr);
+    EXPECT_EQ(toString(m.method), m.name);
+    EXPECT_EQ(parseMethod(m.name), m.method);
+    for (const std::string& alias : m.aliases) EXPECT_EQ(parseMethod(alias), m.method);
+    EXPECT_NE(option.values.find(m.name), std::string::npos);
+    EXPECT_NE(option.help.find(m.label), std::string::npos);
+    for (int n : {1, 8, 33}) {
+      auto r = bakeWith(t.probe, m.method, n);
+      EXPECT_GE(r.lights.size(), 1u);
+      EXPECT_LE(static_cast<int>(r.lights.size()), n);
+      expectFiniteAndConserving(t.probe, r, 1e-6);
+    }
+  }
+  EXPECT_THROW(parseMethod("no-such-method"), Error);
 }
 
 TEST(Bake, AnyNGivesExactlyNLightsAndConservesEnergy) {
