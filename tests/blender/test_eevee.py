@@ -1,7 +1,8 @@
 """Never light a scene twice, in EEVEE too (rendered under Xvfb: EEVEE needs OpenGL). The sphere over a plane is
 rendered lit by the world (A), after a bake of 64 suns with the add-on's world mix (B), and with the same suns and
 the world's strength at 0 (C). The world must add nothing to the lit objects (B = C there), the camera must still
-see the probe (B = A in the background), and the suns must light the objects like the world did (B near A)."""
+see the probe (B = A in the background), and the suns must light the objects like the world did (B near A).
+EEVEE's 8 anti-aliasing samples (its default is 64) are enough for these checks: B and C are sampled alike."""
 
 import os
 import sys
@@ -17,6 +18,7 @@ import render_scene  # noqa: E402
 ARGS = harness.args()
 harness.install_addon(ARGS.zip)
 LUM = render_scene.LUM
+TAA_SAMPLES = 8
 
 
 def test_world_mix_in_eevee():
@@ -26,7 +28,7 @@ def test_world_mix_in_eevee():
     scene = bpy.context.scene
     scene.render.engine = harness.eevee_engine()
     scene.render.film_transparent = False
-    scene.eevee.taa_render_samples = 16
+    scene.eevee.taa_render_samples = TAA_SAMPLES
     a = render_scene.render()
     assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=64) == {"FINISHED"}
     if bpy.app.version >= (4, 2, 0):
@@ -62,8 +64,9 @@ def test_world_mix_in_eevee():
     assert like < 0.15, like     # and the suns stand in for it (EEVEE's shadows and probes are approximate)
 
 
-def _scene_baked_under(engine):
-    """The sphere over a plane, lit by the bundled probe, baked (64 suns, the add-on's defaults) under `engine`."""
+def _scene_baked_under(engine, suns=32):
+    """The sphere over a plane, lit by the bundled probe, baked (`suns`, the add-on's defaults) under `engine`. 32
+    suns need a larger pool (the fit test_world_mix_in_eevee renders at 64 suns is a lower shadow resolution)."""
     harness.empty_scene()
     harness.addon_module("eevee_settings").restore(bpy.context.scene)  # an earlier test's fit, if any
     harness.env_world(bpy.data.images.load(harness.BUNDLED_PROBE))
@@ -71,17 +74,17 @@ def _scene_baked_under(engine):
     scene = bpy.context.scene
     scene.render.engine = engine
     scene.render.film_transparent = False
-    scene.eevee.taa_render_samples = 16
+    scene.eevee.taa_render_samples = TAA_SAMPLES
     scene.eevee.shadow_pool_size, scene.eevee.shadow_resolution_scale = "512", 1.0
-    assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=64) == {"FINISHED"}
+    assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=suns) == {"FINISHED"}
     return scene
 
 
 def test_baked_under_cycles_renders_right_in_eevee():
     """Baked while Cycles is the engine (the factory default), rendered in EEVEE: before the render the shadow pool
-    is fitted to the 64 suns by itself (ctest fails on "Shadow buffer full"), and the picture is the one a bake in
-    EEVEE gives. The same for a file saved after a Cycles bake, opened and rendered in EEVEE as
-    `blender -b file.blend -E BLENDER_EEVEE_NEXT -f 1` does (its -E sets the engine after the file loads)."""
+    is fitted to the suns by itself (ctest fails on "Shadow buffer full") as a bake in EEVEE fits it. The same for a
+    file saved after a Cycles bake, opened and rendered in EEVEE as `blender -b file.blend -E BLENDER_EEVEE_NEXT -f
+    1` does (its -E sets the engine after the file loads); the two renders are the same picture."""
     if bpy.app.version < (4, 2, 0):
         print("  skipped: EEVEE Legacy (Blender %s) has no shadow pool" % bpy.app.version_string)
         return
@@ -89,7 +92,7 @@ def test_baked_under_cycles_renders_right_in_eevee():
     scene = _scene_baked_under(harness.eevee_engine())
     assert shadows.fitted(scene)
     fitted = (scene.eevee.shadow_pool_size, scene.eevee.shadow_resolution_scale)
-    reference = render_scene.render()
+    assert fitted != ("512", 1.0), fitted  # the suns overflow the default pool
 
     scene = _scene_baked_under("CYCLES")
     assert not shadows.fitted(scene) and scene.eevee.shadow_pool_size == "512"
@@ -106,12 +109,12 @@ def test_baked_under_cycles_renders_right_in_eevee():
     opened = render_scene.render()
     assert (scene.eevee.shadow_pool_size, scene.eevee.shadow_resolution_scale) == fitted
 
-    y = [x[..., :3] @ LUM for x in (reference, switched, opened)]
+    y = [x[..., :3] @ LUM for x in (switched, opened)]
     lit = y[0] > 1e-3
-    for name, other in (("switched to EEVEE", y[1]), ("opened in EEVEE", y[2])):
-        diff = float(np.abs(other[lit] - y[0][lit]).mean() / y[0][lit].mean())
-        print("  baked under Cycles, %s: %.3f %% from baked under EEVEE" % (name, 100 * diff))
-        assert diff < 0.005, (name, diff)
+    diff = float(np.abs(y[1][lit] - y[0][lit]).mean() / y[0][lit].mean())
+    print("  baked under Cycles, shadows fitted as a bake in EEVEE fits them (pool %s MB, resolution %g); opened in "
+          "EEVEE %.3f %% from switched to EEVEE" % (fitted[0], fitted[1], 100 * diff))
+    assert diff < 0.005, diff
     scene.render.engine = "CYCLES"
 
 
