@@ -1,6 +1,7 @@
 """The test that proves the product: a diffuse sphere over a plane rendered by Cycles lit by the world, and again lit
 only by the baked lights (the world's diffuse light switched off by the add-on, the camera still seeing it).
-The difference of 8x8-pixel block means of the lit pixels is printed per probe and must stay under a bound.
+The difference of 8x8-pixel block means of the lit pixels is printed per probe and must stay under a bound (the
+renders' own noise, world against world with another seed, is 0.15-0.2 % at 256 samples in 4.5.15).
 Also checks the light units the add-on relies on (conversion.py) in Cycles itself."""
 
 import math
@@ -22,7 +23,7 @@ WIDTH, HEIGHT = 128, 96
 SAMPLES = 256
 if ARGS.size:  # README pictures: e.g. --size 480x360x1024 --save docs
     WIDTH, HEIGHT, SAMPLES = (int(v) for v in ARGS.size.split("x"))
-BOUND_64 = 0.025  # mean relative difference of lit 8x8 blocks at 64 lights (measured 0.5-1.2 %)
+BOUND = 0.025  # mean relative difference of lit 8x8 blocks at 16 and 64 lights (4.5.15: 0.1-0.55 %)
 LUM = render_scene.LUM
 diffuse_material, render, block_difference, save_png = (render_scene.diffuse_material, render_scene.render,
                                                         render_scene.block_difference, render_scene.save_png)
@@ -37,10 +38,7 @@ def compare(probe, counts):
     harness.env_world(bpy.data.images.load(probe))
     sphere_over_plane()
     world_lit = render()
-    bpy.context.scene.cycles.seed = 2
-    noise = block_difference(world_lit, render())[0]  # the same world-lit render with other random numbers
-    bpy.context.scene.cycles.seed = 1
-    results = {"noise": noise}
+    results = {}
     cycles = bpy.context.scene.cycles
     for n in counts:
         assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=n) == {"FINISHED"}
@@ -65,13 +63,11 @@ def test_baked_lights_render_like_the_world():
     worst = 0.0
     for probe in probes:
         results = compare(probe, [16, 64])
-        print("  %-26s noise floor (world vs world, other seed): %.2f %%" % (os.path.basename(probe),
-                                                                          100 * results.pop("noise")))
         for n, (diff, blocks) in results.items():
             print("  %-26s %3d suns: mean relative difference %.2f %% over %d lit 8x8 blocks (%d spp)" % (
                 os.path.basename(probe), n, 100 * diff, blocks, SAMPLES), flush=True)
-        worst = max(worst, results[64][0])
-    assert worst < BOUND_64, "64 lights differ from the world by %.2f %% (bound %.0f %%)" % (100 * worst, 100 * BOUND_64)
+            worst = max(worst, diff)
+    assert worst < BOUND, "the lights differ from the world by %.2f %% (bound %.1f %%)" % (100 * worst, 100 * BOUND)
 
 
 SUN_ANGLES = (0, 10, 30, 90, 120)  # degrees, full angle
