@@ -1,12 +1,18 @@
 """What Cycles' default settings do to baked lamps, per Blender version: the sphere-over-plane scene of the render
 test (bounce light included, 4 bounces) lit by the world (unclamped: the reference) and by N baked suns, with
 Cycles' default indirect clamp and with the settings the add-on offers (clamp 0, light tree where there is one).
-Prints the mean brightness of the lit pixels relative to the world's and the 8x8-block difference. The figures the
-panel quotes (cycles_settings.py) come from here:
+Prints the mean brightness of the lit pixels relative to the world's and the 8x8-block difference:
 
     tests/blender/run.sh blender bench/bench_cycles_settings.py build/probe_lights-0.1.0-linux_x64.zip ../shared [PROBE] [SAMPLES]
+
+With PROBELIGHTS_BENCH_WRITE=addon/probe_lights/cycles_clamp.json it also puts this version's and probe's darkening
+under the default clamp at 64 suns into that file (written whole: a temporary file renamed over it), the data the
+add-on's advice on Cycles' settings reads (cycles_settings.py).
 """
+import datetime
+import json
 import os
+import re
 import sys
 
 import bpy
@@ -45,6 +51,8 @@ for n in (16, 64):
     if hasattr(scene.cycles, "use_light_tree"):
         scene.cycles.use_light_tree = scene.cycles.bl_rna.properties["use_light_tree"].default
     plain = render_scene.render()
+    if n == 64:
+        darkening = max(0.0, 100 * (1 - brightness(reference, plain)))
     assert bpy.ops.probe_lights.cycles_settings() == {"FINISHED"}
     offered = render_scene.render()
     for name, pixels in (("default settings", plain), ("offered settings", offered)):
@@ -76,3 +84,17 @@ if hasattr(scene.cycles, "use_light_tree"):
     b = render_scene.render()
     print("CYCLES noise at 64 spp, 64 suns, light tree off: %.1f %%" % (
         100 * render_scene.block_difference(a, b)[0] / 2 ** 0.5), flush=True)
+
+target = os.environ.get("PROBELIGHTS_BENCH_WRITE")
+if target:
+    with open(target, encoding="utf-8") as f:
+        data = json.load(f)
+    name = re.sub(r"_\d+k$", "", os.path.splitext(os.path.basename(probe))[0])
+    version = "%d.%d.%d" % bpy.app.version
+    data["versions"].setdefault(version, {})[name] = {
+        "darkening": round(darkening, 1), "measured": "%s, %d samples" % (datetime.date.today(), samples)}
+    partial = target + ".partial"
+    with open(partial, "w", encoding="utf-8") as f:
+        f.write(json.dumps(data, indent=1) + "\n")
+    os.replace(partial, target)
+    print("CYCLES wrote Blender %s, %s into %s" % (version, name, target))

@@ -3,29 +3,33 @@
 Cycles' default indirect clamp (10) cuts the bright bounce paths a sun makes, so bounce light under baked suns
 renders darker than under the world; Blender 4.0+ picks among many lamps with its light tree (3.x has none: many
 lamps get noisy, render_cost.py). The panel says which of the scene's settings cost the lamps light or noise
-(MEASURED below, from bench/bench_cycles_settings.py; the figures in docs/renders.md) and offers one click that
+(cycles_clamp.json, written by bench/bench_cycles_settings.py; docs/renders.md) and offers one click that
 sets them; the values it replaced are kept on the scene and put back by Restore world (when no baked world of the
 scene is left).
 """
 
+import json
+import os
+
 import bpy
 
 from .remembered import put_back, set_remembering
-from .render_cost import measured_version
+from .render_cost import nearest_version
 
 BEFORE_KEY = "probe_lights_cycles_before"  # on the scene: the settings the offer replaced
 
-# From bench/bench_cycles_settings.py (sphere over plane, 4 bounces; figures in docs/renders.md), per Blender
-# version: how much darker (%) 64 baked suns render with the default indirect clamp (10) than unclamped, the worst
-# of the probes it ran on. 3.4 picks lamps without a light tree, and the clamp cuts the rare, bright sun samples;
-# with the light tree (4.5+) the clamp changes nothing measurable.
-MEASURED = {
-    (3, 4, 1): {"darkening": 3.0},
-    (4, 5, 15): {"darkening": 0.0},
-    (5, 0, 1): {"darkening": 0.0},
-    (5, 2, 3): {"darkening": 0.0},
-    (5, 3, 0): {"darkening": 0.0},
-}
+
+def _load(path=os.path.join(os.path.dirname(os.path.abspath(__file__)), "cycles_clamp.json")):
+    """cycles_clamp.json as {(major, minor, patch): darkening %}, the worst of the version's probes."""
+    with open(path, encoding="utf-8") as f:
+        versions = json.load(f)["versions"]
+    return {tuple(int(p) for p in version.split(".")): max(m["darkening"] for m in probes.values())
+            for version, probes in versions.items()}
+
+
+# How much darker 64 suns render with the default indirect clamp than without, per measured version. Without a
+# light tree (3.x) lamps are picked uniformly and the clamp cuts the rare, bright samples of a strong sun.
+DARKENING = _load()
 MATTERS = 0.5  # percent: a darkening below this is not worth a word
 
 
@@ -49,10 +53,9 @@ def advice(scene, lamps):
     if scene.render.engine != "CYCLES" or lamps < 2:
         return ""
     wanted = _wanted(scene)
-    version = measured_version(bpy.app.version)
-    measured = MEASURED.get(version, MEASURED[(4, 5, 15)])
+    darkening = DARKENING[nearest_version(DARKENING, bpy.app.version)]
     parts = []
-    if "sample_clamp_indirect" in wanted and measured["darkening"] >= MATTERS:
+    if "sample_clamp_indirect" in wanted and darkening >= MATTERS:
         parts.append("the indirect clamp (%g) darkens the lamps' bounce light" % scene.cycles.sample_clamp_indirect)
     if "use_light_tree" in wanted:
         parts.append("the light tree is off, so many lamps render noisily")

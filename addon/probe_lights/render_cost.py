@@ -25,13 +25,18 @@ MEASURED = _load()
 WITHIN = 0.1  # percentage points: differences closer than this to the least one are as good (noise floor ~0.2)
 
 
-def measured_version(blender_version):
-    """The measured version that stands for `blender_version`: the nearest by major.minor (the older on a tie), so
-    4.2 takes 4.5's light-tree measurements, not 3.4's."""
+def nearest_version(measured, blender_version):
+    """Of the versions `measured` holds (keys (major, minor, patch)), the one that stands for `blender_version`: the
+    nearest by major.minor (the older on a tie), so 4.2 takes 4.5's light-tree measurements, not 3.4's."""
     def minor(v):
         return 100 * v[0] + v[1]
     b = tuple(blender_version)
-    return min(MEASURED, key=lambda v: (abs(minor(v) - minor(b)), v > b))
+    return min(measured, key=lambda v: (abs(minor(v) - minor(b)), v > b))
+
+
+def measured_version(blender_version):
+    """The version of render_cost.json that stands for `blender_version` (nearest_version)."""
+    return nearest_version(MEASURED, blender_version)
 
 
 def _probe_sweet_spot(suns):
