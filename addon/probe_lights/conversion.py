@@ -1,16 +1,14 @@
 """From baked lights to Blender light parameters: units and orientations, no bpy.
 
-Units, measured per Blender version by Cycles renders of a white diffuse patch (tests/blender/test_render.py
-derives them from the renders and checks these models; README "Light units per version"):
+Units per Blender version, from Cycles renders of a white diffuse patch (tests/blender/test_render.py derives them
+from the renders and checks these models in each version; the figures are in docs/renders.md, "Light units"):
   - a sun lamp of strength S and angle 0 gives irradiance S (W/m^2) on a surface facing it, so a light's rgb (the
     sum of L dOmega over its region: the irradiance it gives a facing surface) is sun colour x strength;
   - a sun of angle 2a: Blender 3.4's Cycles samples a disc of radius tan(a) at unit distance with pdf
-    invarea/cos^3, so a facing surface receives S x 2 cos(a) / (1 + cos(a)) (measured: 0.983 at 30 degrees, 0.828
-    at 90, 0.667 at 120); the strength is divided by that factor so the irradiance stays the region's. Blender 4.5,
-    5.0 and 5.2 normalize the cone: a facing surface receives S at every angle (measured 1.0000 from 0 to 179
-    degrees). Versions 3.5 to 4.4 are not measured; they are taken to behave like 4.5 from 4.0 on.
-  - a point lamp of power P (W) at distance D gives irradiance P / (4 pi D^2), so P = 4 pi D^2 x E (measured
-    0.9999 in 3.4, 4.5, 5.0, 5.2).
+    invarea/cos^3, so a facing surface receives S x 2 cos(a) / (1 + cos(a)); the strength is divided by that
+    factor so the irradiance stays the region's. Blender 4.5 and 5.x normalize the cone: a facing surface receives
+    S at every angle. Versions 3.5 to 4.4 are not measured; they are taken to behave like 4.5 from 4.0 on.
+  - a point lamp of power P (W) at distance D gives irradiance P / (4 pi D^2), so P = 4 pi D^2 x E.
 """
 
 import math

@@ -1,19 +1,18 @@
 """EEVEE shadow settings the baked suns need, offered and reversible (EEVEE Next: Blender 4.2 and newer).
 
 EEVEE Next keeps every shadow in one pool of pages (Render > Performance > Shadow Pool, 512 MB by default: 2,048
-pages). Each sun takes about 106 pages whatever the image size, so past about 19 suns the pool is full; EEVEE then
-drops pages by thread timing, and the shadows (and the picture's brightness) change from one render to the next.
-Measured (tests/blender/test_eevee.py's scene, noon_grass, 64 suns): 6,299 pages at 1920x1080 and 6,807 at
-320x240; lit objects 4.2 % to 7.3 % from the world-lit render in repeated runs, 4.29 % every time once the pool
-held them. Halving the shadow resolution (Shadows > Resolution) takes 64 suns to 749 pages and changed a 16-sun
-render by 0.14 %. The fit is the smallest pool that holds the suns' pages (and half or quarter resolution when even
-the largest pool cannot); the values it replaced are kept on the scene and put back by Restore world.
+pages). Each sun takes about a hundred pages whatever the image size, so past about 19 suns the pool is full; EEVEE
+then drops pages by thread timing, and the shadows (and the picture's brightness) change from one render to the
+next. Halving the shadow resolution (Shadows > Resolution) takes a sun to about a tenth of the pages and changes the
+picture by little (docs/eevee.md). The fit is the smallest pool that holds the suns' pages (and half or quarter
+resolution when even the largest pool cannot); the values it replaced are kept on the scene and put back by
+Restore world.
 
 The fit follows the scene, not the click: it is made by itself whenever the scene is to render in EEVEE with baked
 suns the pool cannot hold (before every render, including `blender -b file.blend -E BLENDER_EEVEE_NEXT -f 1`; when
-the engine changes to EEVEE; when a file opens in EEVEE), because a full pool is never what the user wants: 64 suns
-baked under Cycles and rendered in EEVEE with the pool full were 5.1-9.0 % from Cycles and different at each render,
-0.66-1.10 % once the pool held them (docs/eevee.md). The panel says it was done; Restore world undoes it.
+the engine changes to EEVEE; when a file opens in EEVEE), because a full pool is never what the user wants: its
+renders are farther from Cycles and differ from one render to the next (docs/eevee.md). The panel says it was
+done; Restore world undoes it.
 """
 
 import bpy
@@ -23,11 +22,11 @@ from .remembered import put_back, set_remembering
 
 BEFORE_KEY = "probe_lights_eevee_before"  # on the scene: the settings the offer replaced
 
-# Pages one sun needs, by the scene's shadow resolution scale (64 suns, Blender 4.5.15 and 5.2.3 alike:
-# 6,807 / 749 / 445 pages at 320x240); a scale between two rows costs what the row above it does.
+# Pages one sun needs, by the scene's shadow resolution scale (EEVEE's page counts of 64 suns, alike in Blender
+# 4.5 and 5.2; docs/eevee.md); a scale between two rows costs what the row above it does.
 PAGES_PER_SUN = ((1.0, 107), (0.5, 12), (0.25, 7))
-PAGES_PER_MB = 4  # measured: the 512 MB pool holds 2,048 pages, 1024 MB 4,096, 16 MB 64
-MARGIN = 1.1  # the page count varies a little with the view (6,299 to 6,807 for 64 suns)
+PAGES_PER_MB = 4  # the 512 MB pool holds 2,048 pages
+MARGIN = 1.1  # the page count varies a little with the view
 MAX_POOL_MB = 1024  # Blender 5.2 offers 2 GB, which failed here ("Could not allocate shadow atlas": nothing rendered)
 
 

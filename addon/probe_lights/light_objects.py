@@ -76,7 +76,7 @@ def remove_lights(world):
 
 def _remove(collection, objects):
     """Removes `objects` (of `collection`) and their lamps' data in two batches, with the collection unlinked
-    meanwhile (no view-layer update per object): 4096 lamps in 0.3-0.8 s, where one by one took 5 s."""
+    meanwhile (no view-layer update per object, which made removing thousands of lamps one by one slow)."""
     if not objects:
         return
     data = [o.data for o in objects if o.data is not None and o.data.users == 1]

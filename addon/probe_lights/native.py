@@ -75,7 +75,7 @@ def _release_buffers():
 
 
 def _keep_buffers_for_a_while():
-    """The core keeps its last two tables' buffers so the next bake does not map fresh memory (2K: 84 MB, 37 ms);
+    """The core keeps its last two tables' buffers so the next bake does not map fresh memory (native memory.h);
     they are given back KEEP_SECONDS after the last bake."""
     import bpy
     if bpy.app.timers.is_registered(_release_buffers):

@@ -13,7 +13,7 @@ from .properties import SETTING_NAMES, bake_settings, cut_method
 from .world_image import WorldRender
 
 TRADEOFF_COUNTS = [4, 8, 16, 32, 64, 128, 256]
-LAMP_MS = 0.3  # making one lamp with its drivers, before any bake measured it (Blender 3.4 and 4.5: 0.2-0.3 ms)
+LAMP_MS = 0.3  # making one lamp with its drivers: a first guess, until a bake has timed it
 
 
 class PROBE_LIGHTS_OT_bake(bpy.types.Operator):

@@ -6,10 +6,9 @@ from bpy.props import BoolProperty, CollectionProperty, EnumProperty, FloatPrope
 from . import light_kinds
 
 METHODS = [("auto", "Auto", "Variance minimization and median cut: at 16 lights or fewer each fitted and the lights "
-                            "that fit the world's light better kept (a second fit: about 0.1 s); above, each started "
-                            "and the better fitted alone (about 0.07 s at 64 suns)"),
+                            "that fit the world's light better kept; above, each started and the better fitted alone"),
            ("both", "Both cuts", "Variance minimization and median cut, each fitted, and the lights that fit the "
-                                 "world's light better kept (a second fit: about 0.1 s at 16 suns, 0.3 s at 64)"),
+                                 "world's light better kept (a second fit: slower)"),
            ("variance", "Variance minimization", "Cut where the light's spread is least (Viriyothai & Debevec 2009)"),
            ("median-cut", "Median cut", "Equal-energy regions (Debevec 2005)"),
            ("sh", "Spherical harmonics", "Cells of equal SH energy by hierarchical warping (Jarosz 2009, Berger 2011)")]

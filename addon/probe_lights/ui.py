@@ -40,7 +40,7 @@ def draw_panel(layout, context):
     measure = _font_measure()
     scale = context.preferences.system.ui_scale
     # What a label has once the panel's margins, a leading icon and the label's padding are taken off (and in the
-    # sidebar its tabs), less 5 % to spare: measured on screenshots of both editors (tests/blender/test_ui.py).
+    # sidebar its tabs), less a little to spare, as screenshots of both editors show (tests/blender/test_ui.py).
     region = context.region
     tabs = 24 if region is not None and region.type == "UI" else 0
     width = 0.95 * ((region.width if region else 300) - (58 + tabs) * scale)

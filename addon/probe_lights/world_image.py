@@ -20,9 +20,8 @@ _kept = []  # at most one float32 buffer, for the next read of an image of the s
 
 
 def _without_huge_pages(allocate):
-    """Runs allocate() with NumPy's huge-page advice off. Measured at 8K (537 MB, Blender 4.5.15): the first read
-    into a huge-page buffer took 0.73-1.06 s (the kernel's first huge pages of a process), into a plain one 0.29-0.31
-    s; a read into memory already touched 0.13-0.14 s either way."""
+    """Runs allocate() with NumPy's huge-page advice off: the first read into a huge-page buffer waits for the
+    kernel's first huge pages of the process, several times a read into a plain one (docs/decisions.md)."""
     try:
         from numpy._core import multiarray
     except ImportError:  # NumPy 1.x
@@ -50,8 +49,7 @@ def read_buffer(size):
     else:
         _kept.clear()  # the old buffer goes first: never two of them alive for this module
         buf = _without_huge_pages(lambda: np.empty(size, dtype=np.float32))
-        # Blender's foreach_get fills it on one thread; the kernel maps the fresh pages in parallel first (8K:
-        # 537 MB, 206 ms on one thread, 112 ms on two).
+        # Blender's foreach_get fills it on one thread; the kernel maps the fresh pages in parallel first.
         native.module().touch_pages(buf)
         _kept.append(buf)
     if bpy.app.timers.is_registered(_release):
@@ -144,10 +142,10 @@ class WorldRender:
         Cycles' callbacks run in the render thread; with Python's default 5 ms interval, one can take the GIL in
         the middle of an interface draw of the main thread (writes off), save that, and put it back after the
         draw has ended: from then on, as a rule for the rest of the session, no script outside an operator may
-        change data ("can't modify blend data in this state (drawing/rendering)"). Seen in CI after this job.
-        Measured in Blender 3.4 with header draws of 8 ms: stuck after 3 to 17 renders (4 in 28); with the long
-        interval, never in 60 renders, as the GIL then changes hands only between callbacks, where the flag is
-        clear. Draws this slow are what a loaded machine makes of ordinary ones."""
+        change data ("can't modify blend data in this state (drawing/rendering)"). Seen in CI after this job, and
+        reproduced with slow interface draws; with the long interval it never happened (docs/decisions.md), as
+        the GIL then changes hands only between callbacks, where the flag is clear. Slow draws are what a loaded
+        machine makes of ordinary ones."""
         bpy.app.handlers.render_complete.append(self._complete)
         bpy.app.handlers.render_cancel.append(self._cancel)
         view = context.preferences.view

@@ -10,8 +10,8 @@ Every node it adds carries the custom property "probe_lights"; the mix also carr
 else in the tree is touched, so removing the tagged nodes and linking the original surface back restores it.
 EEVEE lights diffuse and reflections from one world probe, so it cannot keep only the world's reflections. EEVEE
 Legacy (3.x) captures that probe as a non-camera, non-glossy ray, so the mix above gives it no world light. EEVEE
-Next (4.2+) captures it as a glossy ray (measured: a world kept for glossy rays lit the objects at 99.9 %, i.e. the
-scene twice). So when the world keeps reflections but not diffuse light, EEVEE gets a World Output of its own
+Next (4.2+) captures it as a glossy ray (a world kept for glossy rays lit the objects fully: the scene twice;
+tests/blender/test_eevee.py). So when the world keeps reflections but not diffuse light, EEVEE gets a World Output of its own
 (target EEVEE) that shows the world to the camera only: in EEVEE the lamps then light everything, once.
 """
 

@@ -27,8 +27,8 @@ bool isImageFile(const std::filesystem::path& p) {
 }
 
 LoadedProbe load(const std::string& path, const ProbeOptions& options, const BakeOptions* grid) {
-  // Loads run side by side with each other and the bakes, so each keeps to its own thread (one_thread.h): 100
-  // 1K probes, 64 lights: 1.28 -> 1.19 s, CPU 2.20 -> 1.91 s (medians of 8).
+  // Loads run side by side with each other and the bakes, so each keeps to its own thread (one_thread.h):
+  // threads that would otherwise share every core only contend (docs/decisions.md).
   const OnOneThread oneThread;
   LoadedProbe item;
   item.path = path;
@@ -88,8 +88,8 @@ void forEachProbe(const std::vector<std::string>& paths, const ProbeOptions& opt
                   const std::function<bool(LoadedProbe&)>& consume, const BakeOptions* grid) {
   // Loads run ahead of the bakes on their own threads: one probe ahead, or two while the probes are small
   // (a serial decoder such as Radiance's RLE keeps one core busy per file, and a 1K bake is shorter than its
-  // load: 100 1K .hdr probes, 64 lights, took 1.65 s with one load ahead, 1.33 s with two, as with three: all
-  // cores busy). At 8K a second whole image in memory is not worth it.
+  // load: two loads ahead keep every core busy, a third adds nothing; docs/decisions.md). At 8K a second
+  // whole image in memory is not worth it.
   constexpr int kSmallWidth = 2048;
   std::deque<std::future<LoadedProbe>> ahead;
   std::size_t next = 0;

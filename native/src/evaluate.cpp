@@ -137,10 +137,9 @@ struct Samples {
 // within it), so the truth does too where it matters: the samples that each carry at least kSplitShare of the
 // probe's light are taken as their pixels (brightest first, up to kSplitPixels pixels), and a pixel with a
 // share s >= kSplitShare as n x n points, n = ceil(sqrt(s / kSplitShare)) up to kSubPixels (n^2 <= 4 s /
-// kSplitShare: at most 40000 points in all). Blender's sunrise, 64 refit suns in 4.5, the add-on's 512-wide
-// estimate: 0.18 % on its samples (rendered 0.53 % less both renders' noise); on pixels 0.65 % (rendered
-// 0.28 %); on split pixels 0.15 % (rendered 0.13 %; at 16 suns 0.81 against 0.80 %). Diffuse light is smooth
-// in direction and keeps the samples.
+// kSplitShare: at most 40000 points in all). Only on split pixels does the estimate agree with Cycles'
+// render where a low sun meets the shadow's edge (docs/decisions.md; tests/blender/test_estimate.py holds it
+// to the render). Diffuse light is smooth in direction and keeps the samples.
 constexpr double kSplitShare = 1e-4;
 constexpr std::size_t kSplitPixels = std::size_t{1} << 16;
 constexpr int kSubPixels = 8;

@@ -45,8 +45,8 @@ struct OpenImage {
 
 // A file of at most this many bytes is read whole with one read and decoded from memory by OpenImageIO (an
 // IOProxy), where its reader for the format takes one: its own reads go through stdio a few bytes at a
-// time, which for a 1K .hdr was a third of its read (100 1K probes: 5.9 -> 4.2 ms a file). Larger files
-// keep OpenImageIO's reads, so a big probe's bytes are never held beside its pixels.
+// time, a large part of a small file's read (docs/decisions.md). Larger files keep OpenImageIO's reads, so
+// a big probe's bytes are never held beside its pixels.
 constexpr std::uintmax_t kReadWholeBytes = 32u << 20;
 
 // Refuses what is not a regular file before a byte is read: a FIFO would block the read forever, a device
@@ -80,8 +80,8 @@ void checkRegularFile(const std::string& path) {
 
 // The most pixels a file may claim: a 32768 x 32768 image (12 GB as float RGB), beyond any probe published.
 constexpr std::uint64_t kMaxPixels = std::uint64_t{1} << 30;
-// The most pixels per byte of file any encoding reaches: a constant 16K image is 2,724 pixels a byte as DWAB
-// EXR, 342 as PNG, 167 as ZIP EXR, 15 as .hdr (measured with oiiotool); 20,000 leaves a margin of 7.
+// The most pixels per byte of file any encoding reaches, with a wide margin over the densest encoding of a
+// constant image (DWAB EXR; docs/decisions.md).
 constexpr std::uint64_t kMaxPixelsPerByte = 20000;
 
 // Refuses a header that claims more pixels than its file could hold, before memory is taken for them (a
@@ -244,9 +244,9 @@ Error readFailure(const std::string& path, OIIO::ImageInput& in) {
 bool readClean(bool read, OIIO::ImageInput& in) { return read && !in.has_error(); }
 
 // A scanline file whose samples are float already (.hdr, float EXR) is read straight into the caller's
-// buffer: read_image and read_scanlines would decode it into a buffer of their own and copy that, which at 8K
-// .hdr was 659 ms against 281 ms straight (a fresh 402 MB buffer, then the copy), and in a library of 1K .hdr
-// two thirds of all page faults. Anything else is converted to float by OpenImageIO.
+// buffer: read_image and read_scanlines would decode it into a buffer of their own and copy that (a fresh
+// buffer as large as the image, then the copy: most of an 8K read's time and of a library's page faults;
+// docs/decisions.md). Anything else is converted to float by OpenImageIO.
 bool nativeFloat(const OIIO::ImageSpec& spec) {
   return spec.format == OIIO::TypeDesc::FLOAT && spec.channelformats.empty() && spec.tile_width == 0 &&
          !spec.deep;

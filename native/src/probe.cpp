@@ -122,7 +122,7 @@ RowCount countRow(const ImageView& view, const Projection& projection, int y) {
   }
   const double rowOmega = perPixel ? 1.0 : projection.latLongRow(y).solidAngle;
   // One pass with a chain of additions per channel and sign (the validation pass is a whole read of the
-  // image; a single accumulator made it latency-bound, 3.4 ms at 1K): the sum of every sample and of the
+  // image; a single accumulator makes it latency-bound): the sum of every sample and of the
   // negative ones. NaN and Inf make the first sum non-finite (float samples cannot overflow a double sum);
   // only such a row is walked again to count them and find the first.
   double all[3] = {0, 0, 0}, negative[3] = {0, 0, 0};
@@ -223,8 +223,7 @@ void PixelReport::settle(NonFinitePolicy policy) {
                        " negative samples (lossy compression produces them): the cuts weigh them as 0, the "
                        "lights keep their light";
     // Their share, when it shows in a render: Cycles renders negative radiance too, which is why the lights
-    // keep it (Probe::light; measured on pmndrs_esplanade: 6.5 % of the light, renders 7-9 % apart when the
-    // lights dropped it).
+    // keep it (Probe::light; docs/decisions.md).
     const double share = positiveLight > 0 ? -negativeLight / positiveLight : 0.0;
     if (share >= 0.001) {
       char text[120];

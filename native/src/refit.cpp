@@ -145,9 +145,8 @@ std::vector<Light> refitIrradiance(const Evaluator& evaluator, const std::vector
   if (n == 0) return out;
   solveColours(evaluator, receivers, out);
   if (placeDarkLights(evaluator, receivers, out)) solveColours(evaluator, receivers, out);
-  // Three rounds up to 16 lights, two above: at 64 suns a third moved the 15 probes' mean errors by under
-  // 0.01 points and cost ~30 ms of a 4K click; at 16 suns it still lowers the mean diffuse error (0.613 ->
-  // 0.578 %).
+  // Three rounds up to 16 lights, two above: with many suns a third round changes the errors by nothing
+  // measurable and costs time; with few it still lowers them (docs/decisions.md).
   constexpr int kThreeRoundsUpTo = 16;
   const int rounds = n <= kThreeRoundsUpTo ? 3 : 2;
   for (int round = 0; moveDirs && round < rounds; ++round) {

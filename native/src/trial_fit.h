@@ -11,7 +11,7 @@
 // a quadratic from moments summed once a light:
 //   above:  sum w (r + s n.d)^2 = sum w r^2 + 2 s d . (sum w r n) + s^2 d^T (sum w n n^T) d
 //   open:   sum w (r + s o)^2   = sum w r^2 + 2 s o (sum w r) + s^2 o^2 (sum w)
-// Only the rest (the band about a cone's horizon, the ground in and near its shadow: 5-40 % of the
+// Only the rest (the band about a cone's horizon, the ground in and near its shadow: a minority of the
 // receivers) is computed kernel by kernel. Whether a receiver is in closed form for a trial is decided by the
 // trial's reach: the cone about the light's current direction d0 that holds the trial's cone (its offset from
 // d0 plus its half-angle); the receivers are binned by the smallest reach that takes them out of closed form,

@@ -57,8 +57,8 @@ EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOpt
                             const WorkingGrid* grid = nullptr);
 
 // bakeEvaluated on a caller's buffer (Probe(view, projection, nonFinite)), its pixels checked in the working
-// grid's pass rather than a pass of their own (Probe::unchecked; at 8K the own pass read 537 MB of Blender's
-// RGBA again): the same lights, notes and errors, the same Error for NaN/Inf before any light is made.
+// grid's pass rather than a pass of their own (Probe::unchecked: a second read of the whole buffer): the same
+// lights, notes and errors, the same Error for NaN/Inf before any light is made.
 // `probe` receives the probe (its report's notes), set also when the check refuses it.
 EvaluatedBake bakeBuffer(ImageView view, ProjectionKind projection, NonFinitePolicy nonFinite,
                          const BakeOptions& options, const AccuracyOptions& accuracy,

@@ -11,7 +11,8 @@
 
 namespace probelights {
 
-// How radiance spreads over a sun's cone, per renderer (measured: tests/blender/test_render.py, README):
+// How radiance spreads over a sun's cone, per renderer (checked in each Blender by
+// tests/blender/test_render.py; docs/renders.md):
 //   Cone: uniform (Cycles 4.0 and later: a uniform cone, normalized so a facing surface gets the strength);
 //   TangentDisc: Cycles 3.x draws a sun of angle 2a as a disc of radius tan(a) at unit distance, uniform over
 //     the disc, so radiance grows as 1 / cos^3 of the angle from the axis (a facing surface gets
@@ -53,10 +54,11 @@ double coneIrradianceByRings(const Cone& cone, const Vec3& normal, const Cap* oc
 // for points of the plane. A uniform cone (Cycles 4.0+) is closed-form: n . axis when it lies wholly above
 // the horizon, 0 below, Snyder's formula for a cap cut by the horizon, less what the occluder hides: n . the
 // integral of w over the two caps' intersection, from the arcs that bound it (Arvo's vector irradiance,
-// cone.cpp); ~20x faster than the quadrature and exact. The disc profile where an occluder or the horizon
-// cuts it is exact up to one-dimensional quadrature: rings around the axis, each ring's visible arcs and
-// their cosine integral in closed form, Gauss-Legendre over the ring angle split where an arc appears (a
-// smoothstep substitution on each piece takes away the square-root ends): errors ~1e-8, at most ~1e-6
+// cone.cpp); exact, and faster than the quadrature (docs/decisions.md). The disc profile where an occluder
+// or the horizon cuts it is exact up to one-dimensional quadrature: rings around the axis, each ring's
+// visible arcs and their cosine integral in closed form, Gauss-Legendre over the ring angle split where an
+// arc appears (a smoothstep substitution on each piece takes away the square-root ends): errors ~1e-8, at
+// most ~1e-6
 // (tests: brute force, and the closed forms against the rings).
 // With SunProfile::TangentDisc the radiance is weighted by 1 / cos^3 over the cone and normalized the same
 // way (facing surface: 1); its angle is kept below 178 degrees (tan a finite).

@@ -89,9 +89,9 @@ class Probe {
   static double sanitize(float v) { return (v > 0.0f && v <= 3.4028234e38f) ? static_cast<double>(v) : 0.0; }
 
   // The light of pixel (x, y) as a renderer has it: like radiance(), but a negative sample keeps its sign.
-  // Cycles renders negative samples (a lossy EXR's ringing darkens its world-lit render: pmndrs_esplanade's
-  // hold -6.5 % of its light), so the lights' colours, the probe's integral and the evaluator's truth sum
-  // light(); the cuts weigh radiance(), as energy must not be negative.
+  // Cycles renders negative samples (a lossy EXR's ringing darkens its world-lit render; docs/decisions.md),
+  // so the lights' colours, the probe's integral and the evaluator's truth sum light(); the cuts weigh
+  // radiance(), as energy must not be negative.
   Rgb light(int x, int y) const { return pixel(x, y, finite); }
   static double finite(float v) {
     return (v >= -3.4028234e38f && v <= 3.4028234e38f) ? static_cast<double>(v) : 0.0;
