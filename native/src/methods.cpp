@@ -4,6 +4,7 @@
 
 #include "probelights/error.h"
 #include "probelights/median_cut.h"
+#include "probelights/names.h"
 #include "probelights/placement.h"
 #include "probelights/sh_lights.h"
 #include "probelights/variance_minimization.h"
@@ -38,14 +39,6 @@ const std::vector<PlacementMethod> kPlacementMethods{
     {Method::SphericalHarmonics, "sh", {"spherical-harmonics"}, "SH importance warping", nullptr, shPlace},
 };
 
-// "a, b or c" of the methods' names.
-std::string choices() {
-  std::string out;
-  for (std::size_t i = 0; i < kPlacementMethods.size(); ++i)
-    out += (i == 0 ? "" : i + 1 == kPlacementMethods.size() ? " or " : ", ") + kPlacementMethods[i].name;
-  return out;
-}
-
 }  // namespace
 
 const std::vector<PlacementMethod>& placementMethods() { return kPlacementMethods; }
@@ -72,7 +65,9 @@ Method parseMethod(const std::string& name) {
     for (const std::string& alias : m.aliases)
       if (alias == name) return m.method;
   }
-  throw Error("unknown method '" + name + "': use " + choices());
+  std::vector<std::string> names;
+  for (const PlacementMethod& m : kPlacementMethods) names.push_back(m.name);
+  throw Error("unknown method '" + name + "': use " + listOf(names));
 }
 
 }  // namespace probelights

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "probelights/error.h"
+#include "probelights/names.h"
 
 namespace probelights {
 
@@ -32,11 +33,9 @@ std::string methodValues() {
 }
 
 std::string methodHelp() {
-  const auto& methods = placementMethods();
-  std::string out = "the cut: ";
-  for (std::size_t i = 0; i < methods.size(); ++i)
-    out += (i == 0 ? "" : i + 1 == methods.size() ? " or " : ", ") + methods[i].label;
-  return out;
+  std::vector<std::string> labels;
+  for (const PlacementMethod& m : placementMethods()) labels.push_back(m.label);
+  return "the cut: " + listOf(labels);
 }
 
 using R = BakeRequest;

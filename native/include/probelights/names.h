@@ -7,6 +7,7 @@
 #include <string>
 #include <string_view>
 #include <utility>
+#include <vector>
 
 #include "probelights/error.h"
 
@@ -15,19 +16,21 @@ namespace probelights {
 template <class E, std::size_t N>
 using NameTable = std::array<std::pair<E, std::string_view>, N>;
 
+// Words as a list: "a, b or c".
+inline std::string listOf(const std::vector<std::string>& words) {
+  std::string out;
+  for (std::size_t i = 0; i < words.size(); ++i)
+    out += (i == 0 ? "" : i + 1 == words.size() ? " or " : ", ") + words[i];
+  return out;
+}
+
 // The canonical words, "a, b or c".
 template <class E, std::size_t N>
 std::string choicesOf(const NameTable<E, N>& table) {
-  std::string out;
-  std::size_t listed = 0, total = 0;
-  for (std::size_t i = 0; i < N; ++i) total += (i == 0 || table[i].first != table[i - 1].first) ? 1 : 0;
-  for (std::size_t i = 0; i < N; ++i) {
-    if (i > 0 && table[i].first == table[i - 1].first) continue;
-    out += listed == 0 ? "" : listed + 1 == total ? " or " : ", ";
-    out += table[i].second;
-    ++listed;
-  }
-  return out;
+  std::vector<std::string> words;
+  for (std::size_t i = 0; i < N; ++i)
+    if (i == 0 || table[i].first != table[i - 1].first) words.emplace_back(table[i].second);
+  return listOf(words);
 }
 
 template <class E, std::size_t N>
