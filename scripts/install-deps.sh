@@ -2,15 +2,17 @@
 # Installs the Debian 12 packages probelights needs, only those that are missing. Run as root.
 #   scripts/install-deps.sh          build + run (CLI, library, Python module)
 #   scripts/install-deps.sh --test   also what the tests and the other platforms' builds need (GoogleTest, pytest,
-#                                    Blender, Xvfb; MinGW-w64's gendef and dlltool for the Windows import
+#                                    Debian's oiiotool to write test images with a tool not ours, OpenEXR for the
+#                                    decoder benchmark, Blender, Xvfb; MinGW-w64's gendef and dlltool for the Windows import
 #                                    libraries, Wine to run the Windows builds, LLVM's tools to read macOS ones;
 #                                    ccache, so a fresh clone's builds reuse earlier compiles)
 set -euo pipefail
-packages=(cmake g++ make pkg-config libopenimageio-dev openimageio-tools nlohmann-json3-dev python3-dev python3-numpy python3-pip
-          python3-venv
-          libbenchmark-dev libopenexr-dev fonts-dejavu-core)
+# OpenImageIO itself is PyPI's, assembled by scripts/oiio.sh (pip, python3-venv) with fmt's and Imath's headers.
+packages=(cmake g++ make pkg-config libfmt-dev libimath-dev nlohmann-json3-dev python3-dev python3-numpy python3-pip
+          python3-venv libbenchmark-dev fonts-dejavu-core)
 if [[ "${1:-}" == "--test" ]]; then
-  packages+=(libgtest-dev googletest python3-pytest blender xvfb xauth libegl1 libgl1-mesa-dri clang-format
+  packages+=(libgtest-dev googletest python3-pytest openimageio-tools libopenexr-dev blender xvfb xauth libegl1
+             libgl1-mesa-dri clang-format
              mingw-w64-tools binutils-mingw-w64-x86-64 wine wine64 llvm-14 ccache)
 fi
 missing=()

@@ -46,7 +46,8 @@ std::string file(Format f) {
   if (!fs::exists(path)) {
     fs::create_directories(dir);
     OIIO::ImageBuf src(PROBELIGHTS_BUNDLED_PROBE);
-    OIIO::ImageBuf big = OIIO::ImageBufAlgo::resize(src, "", 0, OIIO::ROI(0, 8192, 0, 4096, 0, 1, 0, 3));
+    OIIO::ImageBuf big = OIIO::ImageBufAlgo::resize(src, OIIO::ImageBufAlgo::KWArgs(),
+                                                    OIIO::ROI(0, 8192, 0, 4096, 0, 1, 0, 3));
     if (f != kHdr) big.specmod().attribute("compression", "zip");
     const OIIO::TypeDesc type = f == kExrHalf ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT;
     const fs::path part = path.string() + ".part";
