@@ -409,6 +409,7 @@ PYBIND11_MODULE(_probelights, m) {
       "at full resolution).");
   m.attr("__version__") = PROBELIGHTS_VERSION;
   m.attr("max_refit_lights") = kMaxRefitLights;  // the most lights a bake with refit=True takes
+  m.attr("methods") = methodNames();             // every placement method's name, as method= takes it
   // "full": reads files with OpenImageIO (bake_file); "pixels": the portable build inside the Blender add-on,
   // which links nothing but the C library and takes pixels only.
   m.attr("build") = PROBELIGHTS_MODULE_IO ? "full" : "pixels";

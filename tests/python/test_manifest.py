@@ -29,3 +29,16 @@ def test_manifest_has_the_required_fields_and_matches_bl_info():
     info = bl_info()
     assert tuple(int(v) for v in m["version"].split(".")) == info["version"]
     assert info["name"] == m["name"] and info["blender"] <= (3, 4, 0)
+
+
+def test_the_panel_offers_every_placement_method_the_core_registers():
+    # The add-on registers before its native module loads (a Blender without a build for its Python still
+    # enables it), so properties.py lists the methods itself; this holds that list to the core's registry
+    # (native/src/methods.cpp), so a new method fails here until the panel offers it.
+    import _probelights as pl
+    tree = ast.parse(open(os.path.join(ADDON, "properties.py")).read())
+    methods = next(node.value for node in tree.body if isinstance(node, ast.Assign)
+                   and any(getattr(t, "id", "") == "METHODS" for t in node.targets))
+    offered = [item[0] for item in ast.literal_eval(methods)]
+    assert offered[:2] == ["auto", "both"]  # the two cut choices, then the placement methods
+    assert sorted(offered[2:]) == sorted(pl.methods)  # the panel orders them its own way
