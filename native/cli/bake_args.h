@@ -5,13 +5,15 @@
 #include <string>
 #include <vector>
 
+#include "probelights/light_export.h"
 #include "probelights/request.h"
 
 namespace probelights::cli {
 
 struct BakeArgs {
-  std::string probe, output, preview;  // one probe
-  std::vector<std::string> probes;     // a library: files, directories, globs
+  std::string probe, output, preview, gltf;  // one probe
+  ExportOptions exportAs;                    // how --gltf writes the lights
+  std::vector<std::string> probes;           // a library: files, directories, globs
   std::string outDir;
   bool previews = false;
   BakeRequest request;  // the bake (request.h); keepPixels when a preview is asked for

@@ -42,10 +42,28 @@ BakeArgs parseBakeArgs(const std::vector<std::string>& argv) {
                    [&](const std::string& v) { a.request.probe.projection = parseProjectionChoice(v); }});
   table.push_back({{"-o", "--output"}, [&](const std::string& v) { a.output = nonEmpty("-o", v); }});
   table.push_back({{"--preview"}, [&](const std::string& v) { a.preview = nonEmpty("--preview", v); }});
+  table.push_back({{"--gltf"}, [&](const std::string& v) { a.gltf = nonEmpty("--gltf", v); }});
+  bool lightType = false, distance = false;
+  table.push_back({{"--light-type"}, [&](const std::string& v) {
+                     if (v != "sun" && v != "point")
+                       throw UsageError("--light-type takes sun or point, got '" + v + "'");
+                     a.exportAs.kind = v == "sun" ? ExportKind::Sun : ExportKind::Point;
+                     lightType = true;
+                   }});
+  table.push_back({{"--distance"}, [&](const std::string& v) {
+                     a.exportAs.distance = parseReal("--distance", v);
+                     if (!(a.exportAs.distance > 0) || a.exportAs.distance > 1e9)
+                       throw UsageError("--distance takes metres above 0 (e.g. 10), got '" + v + "'");
+                     distance = true;
+                   }});
   table.push_back({{"--out-dir"}, [&](const std::string& v) { a.outDir = nonEmpty("--out-dir", v); }});
   table.push_back(flag({"--previews"}, [&] { a.previews = true; }));
   table.push_back(flag({"-q", "--quiet"}, [&] { a.quiet = true; }));
   const std::vector<std::string> probes = parseOptions(argv, table);
+  if ((lightType || distance) && a.gltf.empty())
+    throw UsageError("--light-type and --distance say how --gltf writes the lights: add --gltf FILE");
+  if (distance && a.exportAs.kind != ExportKind::Point)
+    throw UsageError("--distance places point lights: add --light-type point");
   if (maxError && a.request.accuracy.maxError == 0)
     throw UsageError("--max-error takes an error above 0 (e.g. 1% or 0.01); leave it out to choose --lights");
   a.request.keepPixels = !a.preview.empty() || a.previews;
@@ -53,10 +71,11 @@ BakeArgs parseBakeArgs(const std::vector<std::string>& argv) {
     if (a.previews)
       throw UsageError("--previews goes with --out-dir (a library bake); one probe takes --preview FILE");
     a.probe = oneProbe(probes, "bake");
-    refuseOverwritingProbe(a.probe, {a.output, a.preview});
+    refuseOverwritingProbe(a.probe, {a.output, a.preview, a.gltf});
   } else {
-    if (!a.output.empty() || !a.preview.empty())
-      throw UsageError("with --out-dir each probe's JSON (and --previews) goes there: drop -o / --preview");
+    if (!a.output.empty() || !a.preview.empty() || !a.gltf.empty())
+      throw UsageError(
+          "with --out-dir each probe's JSON (and --previews) goes there: drop -o / --preview / --gltf");
     if (probes.empty()) throw UsageError("no probes given: probelights bake PROBE... --out-dir DIR");
     a.probes = probes;
   }
@@ -152,7 +171,18 @@ int bakeCommand(const std::vector<std::string>& argv) {
   }
   if (!a.preview.empty())
     writeImageWhole(a.preview, [&](const std::string& tmp) { writePreview(probe, done.bake, tmp); });
-  if (!a.quiet) printSummary(a, probe, done, baked.loadMs);
+  Rgb dropped{};
+  if (!a.gltf.empty())
+    writeWhole(a.gltf,
+               gltfDocument(done.bake.lights, a.exportAs, "probelights " PROBELIGHTS_VERSION, &dropped));
+  if (!a.quiet) {
+    printSummary(a, probe, done, baked.loadMs);
+    if (dropped[0] < 0 || dropped[1] < 0 || dropped[2] < 0)
+      std::printf(
+          "note       --gltf: glTF lights cannot be negative; channels below zero written as 0 (rgb %.4g, "
+          "%.4g, %.4g W/m^2 left out)\n",
+          dropped[0], dropped[1], dropped[2]);
+  }
   return 0;
 }
 

@@ -39,6 +39,10 @@ const char* kUsageOwn =
                                     how the image maps to the sphere (default auto: lat-long for 2:1 images)
   -o, --output FILE                 write the lights as JSON ('-' for standard output)
   --preview FILE                    write a picture of the regions and lights (PNG)
+  --gltf FILE                       write the lights as glTF 2.0 (KHR_lights_punctual: suns in lux, points in
+                                    candela, Y up; docs/export.md)
+  --light-type sun|point            what --gltf writes (default sun)
+  --distance M                      --light-type point: metres from the origin (default 10)
   --out-dir DIR                     bake many probes (files, folders, quoted globs) into DIR: a JSON each and
                                     summary.json; the next loads while one bakes; exit 3 if some failed
   --previews                        with --out-dir: a preview PNG per probe too

@@ -16,6 +16,7 @@
 #endif
 #include "probelights/error.h"
 #include "probelights/evaluate.h"
+#include "probelights/light_export.h"
 #include "probelights/memory.h"
 #include "probelights/probe.h"
 #include "probelights/refit.h"
@@ -252,6 +253,45 @@ std::string optionsDoc() {
   return doc;
 }
 
+// glTF text (light_export.h) of a result's lights: the dict bake() returns under "lights" (its direction and
+// rgb columns; angle and solid_angle when present, kept in the lights' extras).
+std::string gltfText(const py::dict& lights, const std::string& lightType, double distance) {
+  if (lightType != "sun" && lightType != "point")
+    throw Error("light_type takes 'sun' or 'point', got '" + lightType + "'");
+  if (!(distance > 0) || distance > 1e9)
+    throw Error("distance takes metres above 0, got " + std::to_string(distance));
+  auto column = [&](const char* key, py::ssize_t width, bool required) {
+    if (!lights.contains(key)) {
+      if (required)
+        throw Error(std::string("lights has no '") + key + "' (pass the 'lights' of a bake's result)");
+      return py::array_t<double, py::array::c_style | py::array::forcecast>();
+    }
+    auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(lights[key]);
+    if (!a || (width == 1 ? a.ndim() != 1 : (a.ndim() != 2 || a.shape(1) != width)))
+      throw Error(std::string("lights['") + key + "'] must be an array of shape (N" +
+                  (width == 1 ? "" : ", " + std::to_string(width)) + ")");
+    return a;
+  };
+  const auto direction = column("direction", 3, true), rgb = column("rgb", 3, true);
+  const auto angle = column("angle", 1, false), solidAngle = column("solid_angle", 1, false);
+  const py::ssize_t n = direction.shape(0);
+  if (rgb.shape(0) != n || (angle.size() && angle.shape(0) != n) ||
+      (solidAngle.size() && solidAngle.shape(0) != n))
+    throw Error("lights' columns differ in length");
+  std::vector<Light> out(static_cast<std::size_t>(n));
+  for (py::ssize_t i = 0; i < n; ++i) {
+    Light& l = out[static_cast<std::size_t>(i)];
+    l.direction = {direction.at(i, 0), direction.at(i, 1), direction.at(i, 2)};
+    l.rgb = {rgb.at(i, 0), rgb.at(i, 1), rgb.at(i, 2)};
+    if (angle.size()) l.angle = angle.at(i);
+    if (solidAngle.size()) l.solidAngle = solidAngle.at(i);
+  }
+  ExportOptions options;
+  options.kind = lightType == "sun" ? ExportKind::Sun : ExportKind::Point;
+  options.distance = distance;
+  return gltfDocument(out, options, "probelights " PROBELIGHTS_VERSION);
+}
+
 // Every registered placement method's name (placement.h).
 std::vector<std::string> methodNames() {
   std::vector<std::string> names;
@@ -402,6 +442,11 @@ PYBIND11_MODULE(_probelights, m) {
       "Map a new float32 buffer's memory from all threads (one write of 0 per page), before a "
       "single-threaded "
       "writer fills it: the kernel's first-touch cost is paid in parallel.");
+  m.def(
+      "gltf", &gltfText, py::arg("lights"), py::kw_only(), py::arg("light_type") = "sun",
+      py::arg("distance") = 10.0,
+      "glTF 2.0 text (KHR_lights_punctual, Y up) of a bake's lights (its result's 'lights'): suns in lux, or "
+      "point lights `distance` metres out in candela, at 683 lm/W as Blender's glTF importer reads them.");
   m.def(
       "release_memory", [] { releaseKeptBuffers(); },
       "Give back the table buffers kept for the next bake (memory.h: up to two, e.g. 84 MB each for 2K "

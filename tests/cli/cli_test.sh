@@ -40,6 +40,12 @@ expect_error "ambiguous projection" "--projection" bake "$tmp/square.pfm"
 printf 'PF\n4 2\n-1.0\n' >"$tmp/nan.pfm"
 python3 -c "import struct,sys; v=[1.0]*24; v[4]=float('nan'); sys.stdout.buffer.write(struct.pack('<24f', *v))" >>"$tmp/nan.pfm"
 expect_error "NaN pixels" "1 NaN/Inf samples" bake "$tmp/nan.pfm"
+expect_error "light type without glTF" "add --gltf FILE" bake "$probe" --light-type point
+expect_error "distance for suns" "add --light-type point" bake "$probe" --gltf "$tmp/x.gltf" --distance 3
+expect_error "bad light type" "sun or point" bake "$probe" --gltf "$tmp/x.gltf" --light-type spot
+expect_error "zero distance" "above 0" bake "$probe" --gltf "$tmp/x.gltf" --light-type point --distance 0
+expect_error "glTF in a library" "drop -o / --preview / --gltf" bake "$probe" --out-dir "$tmp/lib" --gltf "$tmp/x.gltf"
+expect_error "glTF over the probe" "is the probe itself" bake "$probe" --gltf "$probe"
 
 check() {  # name, command
   if eval "$2"; then passed=$((passed + 1)); else failed=$((failed + 1)); echo "FAIL $1"; fi
@@ -61,6 +67,8 @@ for k in range(3):
     assert abs(s - d['total_rgb'][k]) <= 1e-6 * d['total_rgb'][k], (s, d['total_rgb'])
 PY"
 check "preview is a PNG" "head -c 8 '$tmp/p.png' | od -An -c | grep -q 'P   N   G'"
+check "bake writes glTF lights" \
+  "'$bin' bake '$probe' --lights 8 --gltf '$tmp/l.gltf' -q && python3 -c \"import json,sys; d=json.load(open(sys.argv[1])); assert len(d['nodes']) == 8 and d['extensionsUsed'] == ['KHR_lights_punctual']\" '$tmp/l.gltf'"
 check "summary shows timings and energy" "grep -q 'time (ms)' '$tmp/summary' && grep -q 'max rel. diff' '$tmp/summary'"
 check "version" "'$bin' --version | grep -q '^probelights [0-9]'"
 check "JSON to stdout" "'$bin' bake '$probe' --lights 2 -o - | python3 -c 'import json,sys; json.load(sys.stdin)'"

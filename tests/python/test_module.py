@@ -1,5 +1,6 @@
 """The _probelights module from plain Python (the system Python Blender runs): arrays in, numpy arrays out."""
 
+import json
 import math
 import os
 import threading
@@ -302,3 +303,41 @@ def test_bake_files_bakes_a_library_and_reports_a_bad_probe(bundled_probe, tmp_p
     for r in (results[0], results[2]):
         assert np.array_equal(r["lights"]["rgb"], single["lights"]["rgb"])
         assert r["evaluation"] == single["evaluation"]
+
+
+def test_gltf_of_a_bake_in_glTFs_frame_and_units():
+    # A probe with one bright cell: its light's direction and irradiance, as glTF carries them.
+    pixels = np.full((64, 128, 3), 0.01, np.float32)
+    pixels[20, 90] = (400, 300, 200)
+    r = pl.bake(pixels, lights=4)
+    doc = json.loads(pl.gltf(r["lights"]))
+    lights, nodes = doc["extensions"]["KHR_lights_punctual"]["lights"], doc["nodes"]
+    assert doc["asset"]["version"] == "2.0" and len(lights) == len(nodes) == 4
+    brightest = int(np.argmax(r["lights"]["rgb"].max(axis=1)))
+    light, node = lights[brightest], nodes[brightest]
+    rgb, d = r["lights"]["rgb"][brightest], r["lights"]["direction"][brightest]
+    assert light["type"] == "directional" and max(light["color"]) == 1.0
+    assert light["intensity"] == pytest.approx(rgb.max() * 683) and light["color"] == pytest.approx(rgb / rgb.max())
+    # glTF's -Z (where a light shines) turned to point from the light to the origin; Blender (x, y, z) = glTF
+    # (x, -z, y).
+    x, y, z, w = node["rotation"]
+    local_z = np.array([2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)])
+    assert local_z == pytest.approx([d[0], d[2], -d[1]], abs=1e-12)
+    assert light["extras"]["angle"] == pytest.approx(r["lights"]["angle"][brightest])
+    points = json.loads(pl.gltf(r["lights"], light_type="point", distance=5))
+    p = points["extensions"]["KHR_lights_punctual"]["lights"][brightest]
+    assert p["type"] == "point" and p["intensity"] == pytest.approx(rgb.max() * 25 * 683)
+    assert points["nodes"][brightest]["translation"] == pytest.approx(5 * np.array([d[0], d[2], -d[1]]))
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    ({"light_type": "spot"}, "light_type takes 'sun' or 'point'"),
+    ({"distance": 0}, "distance takes metres above 0"),
+    ({"distance": float("nan")}, "distance takes metres above 0"),
+])
+def test_gltf_bad_requests(kwargs, message):
+    r = pl.bake(np.ones((8, 16, 3), np.float32), lights=2)
+    with pytest.raises(pl.Error, match=message):
+        pl.gltf(r["lights"], **kwargs)
+    with pytest.raises(pl.Error, match="no 'rgb'"):
+        pl.gltf({"direction": r["lights"]["direction"]})

@@ -1,0 +1,110 @@
+"""Lights leaving for other renderers, read back by a reader nobody here wrote: the CLI's glTF (KHR_lights_punctual)
+imported by Blender's own glTF importer (io_scene_gltf2, its default "Standard" lighting units) must give back the
+lights' directions and irradiances, and its suns must render (Cycles, the diffuse sphere over a plane of
+test_render.py) as the world does and as the add-on's own bake of the same probe does."""
+
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+
+import bpy
+import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "harness"))
+import harness  # noqa: E402
+import render_scene  # noqa: E402
+
+ARGS = harness.args()
+harness.install_addon(ARGS.zip)
+CLI = os.path.join(os.path.dirname(os.path.abspath(ARGS.zip)), "bin", "probelights")
+# The add-on's settings for 16 lights (bake.py: auto cuts, refit of colours and directions from energy^2
+# centroids, angles fitted to the shadows at a 512-wide estimate).
+ADDON_LIKE = ["--lights", "16", "--cuts", "auto", "--refit", "--refit-directions", "--centroid", "energy2",
+              "--effects", "diffuse,shadow", "--evaluator-width", "512"]
+WIDTH, HEIGHT = 128, 96
+SAMPLES = 128 if bpy.app.version >= (4, 0, 0) else 256
+BOUND = 0.025  # test_render.py's bound for 16 suns
+
+
+def cli_bake(folder, *extra):
+    """The CLI's lights (its JSON) and the glTF it wrote beside them."""
+    lights, gltf = os.path.join(folder, "lights.json"), os.path.join(folder, "lights.gltf")
+    subprocess.run([CLI, "bake", harness.BUNDLED_PROBE, *ADDON_LIKE, "-q", "-o", lights, "--gltf", gltf, *extra],
+                   check=True)
+    with open(lights) as f:
+        got = json.load(f)["lights"]
+    return np.array([l["direction"] for l in got]), np.maximum(np.array([l["rgb"] for l in got]), 0.0), gltf
+
+
+def imported(gltf):
+    before = set(bpy.data.objects)
+    assert bpy.ops.import_scene.gltf(filepath=gltf) == {"FINISHED"}
+    bpy.context.view_layer.update()  # the new objects' matrix_world
+    new = [o for o in bpy.data.objects if o not in before and o.type == "LIGHT"]
+    return sorted(new, key=lambda o: o.name)
+
+
+def test_gltf_suns_come_back_through_blenders_importer():
+    harness.empty_scene()
+    with tempfile.TemporaryDirectory() as folder:
+        directions, rgb, gltf = cli_bake(folder)
+        suns = imported(gltf)
+    assert len(suns) == len(directions) and all(o.data.type == "SUN" for o in suns)
+    for sun, d, e in zip(suns, directions, rgb):
+        shines_from = np.array(sun.matrix_world.to_3x3().col[2])  # a sun shines along its local -Z
+        u = d / np.linalg.norm(d)
+        off = np.degrees(np.arctan2(np.linalg.norm(np.cross(shines_from, u)), shines_from @ u))  # well-conditioned
+        assert off < 1e-3, (sun.name, d, shines_from, off)
+        given = np.array(sun.data.color) * sun.data.energy  # a facing surface's irradiance, W/m^2 (4.0+: any angle)
+        assert np.allclose(given, e, rtol=1e-5, atol=1e-7 * e.max()), (sun.name, given, e)
+    print("  %d suns back from glTF: directions within 0.001 degrees, irradiance within 1e-5" % len(suns))
+
+
+def test_gltf_points_come_back_through_blenders_importer():
+    harness.empty_scene()
+    distance = 7.0
+    with tempfile.TemporaryDirectory() as folder:
+        directions, rgb, gltf = cli_bake(folder, "--light-type", "point", "--distance", str(distance))
+        points = imported(gltf)
+    assert len(points) == len(directions) and all(o.data.type == "POINT" for o in points)
+    for point, d, e in zip(points, directions, rgb):
+        at = np.array(point.matrix_world.translation)
+        assert np.allclose(at, distance * d / np.linalg.norm(d), atol=1e-5), (point.name, at, d)
+        # A point lamp of power P at distance D gives the origin P / (4 pi D^2) (conversion.py, test_render.py).
+        given = np.array(point.data.color) * point.data.energy / (4 * math.pi * distance ** 2)
+        assert np.allclose(given, e, rtol=1e-5, atol=1e-7 * e.max()), (point.name, given, e)
+    print("  %d point lights back from glTF at %g m: positions and the origin's irradiance kept" % (
+        len(points), distance))
+
+
+def test_gltf_suns_render_as_the_world_and_the_addons_bake():
+    harness.empty_scene()
+    harness.env_world(bpy.data.images.load(harness.BUNDLED_PROBE))
+    render_scene.sphere_over_plane(WIDTH, HEIGHT, SAMPLES)
+    world_lit = render_scene.render()
+    assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=16) == {"FINISHED"}
+    addon_lit = render_scene.render()
+    assert bpy.ops.probe_lights.restore() == {"FINISHED"}
+    bpy.context.scene.world = None  # the glTF's suns alone (a black world)
+    with tempfile.TemporaryDirectory() as folder:
+        _, _, gltf = cli_bake(folder)
+        suns = imported(gltf)
+        # glTF has no sun angle: the importer leaves Blender's default; the fitted one travels in the extras.
+        angles = [(s.data.angle, s.data.get("angle")) for s in suns]
+    gltf_lit = render_scene.render()
+    to_world, blocks = render_scene.block_difference(world_lit, gltf_lit)
+    to_addon, _ = render_scene.block_difference(addon_lit, gltf_lit)
+    print("  16 suns from glTF against the world: %.2f %%, against the add-on's bake: %.2f %% (%d lit 8x8 blocks, "
+          "%d spp; sun angles %.2f degrees imported, %.1f-%.1f fitted in extras)" % (
+              100 * to_world, 100 * to_addon, blocks, SAMPLES, math.degrees(angles[0][0]),
+              math.degrees(min(a for _, a in angles)), math.degrees(max(a for _, a in angles))), flush=True)
+    assert to_world < BOUND and to_addon < BOUND, (to_world, to_addon)
+
+
+if __name__ == "__main__":
+    harness.run([test_gltf_suns_come_back_through_blenders_importer,
+                 test_gltf_points_come_back_through_blenders_importer,
+                 test_gltf_suns_render_as_the_world_and_the_addons_bake])
