@@ -13,12 +13,8 @@ cache=${PROBELIGHTS_CACHE:-$HOME/.cache/probelights}
 env=$cache/bpy-$version
 if [[ -x $env/bin/python && -f $env/.complete ]]; then echo "$env"; exit 0; fi
 
-# A CPython of the right minor version: pyenv's, then the system's.
-python=""
-for candidate in "${PYENV_ROOT:-$HOME/.pyenv}"/versions/$py.*/bin/python$py /usr/bin/python$py /usr/local/bin/python$py; do
-  [[ -x $candidate ]] && { python=$candidate; break; }
-done
-[[ -n $python ]] || { echo "bpy $version needs CPython $py, which is not installed" >&2; exit 3; }
+# A CPython of the right minor version (pyenv's, the system's, or one built into the cache: scripts/cpython.sh).
+python=$("$(dirname "$0")"/cpython.sh "$py")
 
 rm -rf "$env"; mkdir -p "$cache"
 "$python" -m venv "$env" >&2

@@ -39,28 +39,20 @@ for tool in ar ranlib; do
 done
 chmod +x "$dir"/bin/*
 
-# CPython's headers from Debian's source packages, through a private apt state (the machine's own archive, its
-# lists and /etc/apt untouched).
-archive=$(scripts/lib/debian-archive.sh)
-apt=$dir/dl/apt
-mkdir -p "$apt"/lists/partial "$apt"/cache/archives/partial
-printf 'deb-src %s %s main\n' "$archive" bookworm "$archive" trixie > "$apt/sources.list"
-aptopts=(-o APT::Sandbox::User=root -o "Dir::Etc::SourceList=$apt/sources.list" -o Dir::Etc::SourceParts=/nonexistent
-         -o "Dir::State::Lists=$apt/lists" -o "Dir::Cache=$apt/cache")
-apt-get "${aptopts[@]}" update -qq >&2
+# CPython's headers from Debian's source packages (scripts/lib/debian-source.sh: the machine's own archive).
 for abi in 311 313; do
-  package=python3.${abi:1}
-  (cd "$dir/dl" && apt-get "${aptopts[@]}" source --download-only -qq "$package/${source_suite[$abi]}" >&2)
-  tarball=$(ls "$dir"/dl/${package}_*.orig.tar.* | head -1)
+  tarball=$(scripts/lib/debian-source.sh "python3.${abi:1}" "${source_suite[$abi]}" "$dir/dl")
   version=${tarball##*_}; top=Python-${version%.orig.tar.*}
   tar xf "$tarball" -C "$dir/python" --wildcards "$top/Include/*" "$top/PC/pyconfig.h*"
   mv "$dir/python/$top" "$dir/python/cp$abi"
   # 3.13 ships PC/pyconfig.h.in whose one template line is a commented-out Py_GIL_DISABLED.
   [[ -f $dir/python/cp$abi/PC/pyconfig.h ]] || cp "$dir/python/cp$abi/PC/pyconfig.h.in" "$dir/python/cp$abi/PC/pyconfig.h"
   # macOS: no pyconfig.h of Apple's is to be had here; derived from this machine's Linux one of the same version.
-  linux=$(ls "${PYENV_ROOT:-$HOME/.pyenv}"/versions/3.${abi:1}.*/include/python3.${abi:1}/pyconfig.h \
-             /usr/include/x86_64-linux-gnu/python3.${abi:1}/pyconfig.h 2>/dev/null | head -1 || true)
-  [[ -n $linux ]] || { echo "no Linux pyconfig.h of Python 3.${abi:1} to derive macOS' from" >&2; exit 3; }
+  # (Debian's own Python keeps it under its multiarch folder; /usr/include/python3.X/pyconfig.h includes that.)
+  include=$("$(scripts/cpython.sh "3.${abi:1}")" -c "import sysconfig; print(sysconfig.get_paths()['include'])")
+  linux=$include/pyconfig.h
+  [[ $include != /usr/include/* ]] || linux=/usr/include/x86_64-linux-gnu/python3.${abi:1}/pyconfig.h
+  [[ -f $linux ]] || { echo "no Linux pyconfig.h of Python 3.${abi:1} to derive macOS' from" >&2; exit 3; }
   mkdir -p "$dir/python/cp$abi/macos"
   python3 scripts/macos_pyconfig.py "$linux" > "$dir/python/cp$abi/macos/pyconfig.h"
 

@@ -24,12 +24,8 @@ rm -rf "$dir"; mkdir -p "$dir/site-packages"
 cp -r "$toolchain/embed/cp$abi" "$dir/python"
 # The embeddable CPython reads sys.path from its ._pth file alone (no PYTHONPATH, not the script's folder).
 printf 'python%s.zip\n.\n..\\site-packages\nimport site\n' "$abi" > "$dir/python/python$abi._pth"
-# pip of the same CPython minor version (pyenv's, then the system's): Requires-Python is checked against it.
-python=""
-for candidate in "${PYENV_ROOT:-$HOME/.pyenv}"/versions/3.${abi:1}.*/bin/python3.${abi:1} /usr/bin/python3.${abi:1}; do
-  [[ -x $candidate ]] && { python=$candidate; break; }
-done
-[[ -n $python ]] || { echo "no CPython 3.${abi:1} here to run pip for the Windows one" >&2; exit 3; }
+# pip of the same CPython minor version (scripts/cpython.sh): Requires-Python is checked against it.
+python=$("$(dirname "$0")"/cpython.sh "3.${abi:1}")
 "$python" -m pip install -q --disable-pip-version-check --no-compile --target "$dir/site-packages" \
   --platform win_amd64 --python-version "3.${abi:1}" --implementation cp --only-binary=:all: \
   "${requirements[@]}" >&2
