@@ -13,7 +13,7 @@ packages=(cmake g++ make pkg-config libfmt-dev libimath-dev nlohmann-json3-dev p
           python3-venv libbenchmark-dev fonts-dejavu-core)
 if [[ "${1:-}" == "--test" ]]; then
   packages+=(libgtest-dev googletest python3-pytest openimageio-tools libopenexr-dev blender xvfb xauth libegl1
-             libgl1-mesa-dri clang-format libssl-dev zlib1g-dev libffi-dev libbz2-dev liblzma-dev
+             libgl1-mesa-dri clang-format libssl-dev zlib1g-dev libffi-dev libbz2-dev liblzma-dev xz-utils
              mingw-w64-tools binutils-mingw-w64-x86-64 wine wine64 llvm-14 ccache)
 fi
 missing=()
