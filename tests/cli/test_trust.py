@@ -338,6 +338,9 @@ def test_an_unreadable_folder_says_so(tmp_path, small):
     lib.chmod(0o300)
     os.chmod(tmp_path, 0o777)
     drop = ["setpriv", "--reuid=65534", "--regid=65534", "--clear-groups"] if os.geteuid() == 0 else []
+    if drop and subprocess.run([*drop, BIN, "--version"], capture_output=True).returncode != 0:
+        # e.g. a clone under /root (mode 700): user nobody cannot load the build's own OpenImageIO (build/lib)
+        pytest.skip("user nobody cannot run this build (its folder or build/lib is not open to other users)")
     p = subprocess.run([*drop, BIN, "bake", str(lib), "--out-dir", str(tmp_path / "o")], capture_output=True)
     one_line_error(p, text="Permission denied")
 
