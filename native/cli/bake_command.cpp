@@ -45,15 +45,11 @@ BakeArgs parseBakeArgs(const std::vector<std::string>& argv) {
   table.push_back({{"--gltf"}, [&](const std::string& v) { a.gltf = nonEmpty("--gltf", v); }});
   bool lightType = false, distance = false;
   table.push_back({{"--light-type"}, [&](const std::string& v) {
-                     if (v != "sun" && v != "point")
-                       throw UsageError("--light-type takes sun or point, got '" + v + "'");
-                     a.exportAs.kind = v == "sun" ? ExportKind::Sun : ExportKind::Point;
+                     a.exportAs.kind = parseExportKind("--light-type", v);
                      lightType = true;
                    }});
   table.push_back({{"--distance"}, [&](const std::string& v) {
-                     a.exportAs.distance = parseReal("--distance", v);
-                     if (!(a.exportAs.distance > 0) || a.exportAs.distance > 1e9)
-                       throw UsageError("--distance takes metres above 0 (e.g. 10), got '" + v + "'");
+                     a.exportAs.distance = checkedDistance("--distance", parseReal("--distance", v));
                      distance = true;
                    }});
   table.push_back({{"--out-dir"}, [&](const std::string& v) { a.outDir = nonEmpty("--out-dir", v); }});

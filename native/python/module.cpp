@@ -256,10 +256,9 @@ std::string optionsDoc() {
 // glTF text (light_export.h) of a result's lights: the dict bake() returns under "lights" (its direction and
 // rgb columns; angle and solid_angle when present, kept in the lights' extras).
 std::string gltfText(const py::dict& lights, const std::string& lightType, double distance) {
-  if (lightType != "sun" && lightType != "point")
-    throw Error("light_type takes 'sun' or 'point', got '" + lightType + "'");
-  if (!(distance > 0) || distance > 1e9)
-    throw Error("distance takes metres above 0, got " + std::to_string(distance));
+  ExportOptions options;
+  options.kind = parseExportKind("light_type", lightType);
+  options.distance = checkedDistance("distance", distance);
   auto column = [&](const char* key, py::ssize_t width, bool required) {
     if (!lights.contains(key)) {
       if (required)
@@ -286,9 +285,6 @@ std::string gltfText(const py::dict& lights, const std::string& lightType, doubl
     if (angle.size()) l.angle = angle.at(i);
     if (solidAngle.size()) l.solidAngle = solidAngle.at(i);
   }
-  ExportOptions options;
-  options.kind = lightType == "sun" ? ExportKind::Sun : ExportKind::Point;
-  options.distance = distance;
   return gltfDocument(out, options, "probelights " PROBELIGHTS_VERSION);
 }
 

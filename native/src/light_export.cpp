@@ -5,6 +5,8 @@
 #include <charconv>
 #include <cmath>
 
+#include "probelights/error.h"
+
 namespace probelights {
 
 namespace {
@@ -38,6 +40,18 @@ std::array<double, 4> turnZTo(const Vec3& d) {
 }
 
 }  // namespace
+
+ExportKind parseExportKind(const std::string& option, const std::string& text) {
+  if (text == "sun") return ExportKind::Sun;
+  if (text == "point") return ExportKind::Point;
+  throw Error(option + " takes sun or point, got '" + text + "'");
+}
+
+double checkedDistance(const std::string& option, double metres) {
+  if (!(metres > 0) || metres > 1e9)
+    throw Error(option + " takes metres above 0 (e.g. 10), got " + number(metres));
+  return metres;
+}
 
 std::string gltfDocument(const std::vector<Light>& lights, const ExportOptions& options,
                          const std::string& generator, Rgb* clampedRgb) {

@@ -331,7 +331,7 @@ def test_gltf_of_a_bake_in_glTFs_frame_and_units():
 
 
 @pytest.mark.parametrize("kwargs, message", [
-    ({"light_type": "spot"}, "light_type takes 'sun' or 'point'"),
+    ({"light_type": "spot"}, "light_type takes sun or point"),
     ({"distance": 0}, "distance takes metres above 0"),
     ({"distance": float("nan")}, "distance takes metres above 0"),
 ])

@@ -15,6 +15,11 @@ struct ExportOptions {
   double distance = 10;  // metres from the origin, point lights (a sun's position does not light anything)
 };
 
+// The words of the CLI's --light-type and the module's light_type= ("sun", "point"), and the distances both
+// take (above 0, at most 1e9 m); a bad one is an Error naming `option`.
+ExportKind parseExportKind(const std::string& option, const std::string& text);
+double checkedDistance(const std::string& option, double metres);
+
 // Lumens per watt: the luminous efficacy Blender's glTF importer and exporter divide and multiply by
 // (io_scene_gltf2 PBR_WATTS_TO_LUMENS, their "Standard" lighting mode): a light leaves and comes back as
 // it was.
