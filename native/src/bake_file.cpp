@@ -1,8 +1,12 @@
 #include "probelights/bake_file.h"
 
+#include <algorithm>
+#include <thread>
+
 #include "probelights/batch.h"
 #include "probelights/grid_load.h"
 #include "probelights/image_file.h"
+#include "probelights/one_thread.h"
 #include "probelights/stopwatch.h"
 
 namespace probelights {
@@ -28,24 +32,52 @@ BakedFile bakeFile(const std::string& path, const BakeRequest& request) {
 
 void bakeFiles(const std::vector<std::string>& paths, const BakeRequest& request,
                const std::function<bool(BakedFile&)>& consume) {
-  auto bakeOne = [&](LoadedProbe& item) {
-    BakedFile out;
-    out.path = item.path;
-    out.error = item.error;
-    out.loadMs = item.loadMs;
-    if (item.probe) {
-      try {
-        Stopwatch bake;
-        out.result = bakeLoaded(*item.probe, request, item.table ? &*item.table : nullptr, item.tablesMs);
-        out.bakeMs = bake.ms();
-      } catch (const std::exception& e) {
-        out.error = e.what();
-      }
-      out.probe = std::move(item.probe);
+  const BakeOptions* grid = readsIntoGridAlone(request) ? &request.bake : nullptr;
+  auto bake = [&](BakedFile& out, LoadedProbe& item) {
+    try {
+      Stopwatch clock;
+      out.result = bakeLoaded(*item.probe, request, item.table ? &*item.table : nullptr, item.tablesMs);
+      out.bakeMs = clock.ms();
+    } catch (const std::exception& e) {
+      out.error = e.what();
     }
-    return consume(out);
   };
-  forEachProbe(paths, request.probe, bakeOne, readsIntoGridAlone(request) ? &request.bake : nullptr);
+  // A small probe is loaded and baked on one thread, as many probes at once as there are cores: each bake on
+  // its own thread gives the same bits as one spread over the pool (one_thread.h), and a 1K probe's bake is
+  // too short to share (100 1K probes, 64 lights: docs/decisions.md). A large one is baked here on every
+  // core while the next loads.
+  struct Work {
+    BakedFile out;
+    std::optional<LoadedProbe> large;  // loaded, to be baked on the calling thread
+  };
+  const std::size_t cores = std::max(2u, std::thread::hardware_concurrency());
+  runAhead<Work>(
+      paths.size(),
+      [&](std::size_t i) {
+        Work w;
+        LoadedProbe item = loadForBatch(paths[i], request.probe, grid);
+        w.out.path = item.path;
+        w.out.error = item.error;
+        w.out.loadMs = item.loadMs;
+        if (!item.probe) return w;
+        if (item.probe->width() > kSmallProbeWidth) {
+          w.large.emplace(std::move(item));
+          return w;
+        }
+        const OnOneThread oneThread;
+        bake(w.out, item);
+        w.out.probe = std::move(item.probe);
+        return w;
+      },
+      [&](const Work& w) { return w.large ? 1 : cores; },
+      [&](Work& w) {
+        if (w.large) {
+          bake(w.out, *w.large);
+          w.out.probe = std::move(w.large->probe);
+          w.large.reset();
+        }
+        return consume(w.out);
+      });
 }
 
 }  // namespace probelights

@@ -3,9 +3,7 @@
 #include <glob.h>
 
 #include <algorithm>
-#include <deque>
 #include <filesystem>
-#include <future>
 #include <set>
 
 #include "probelights/error.h"
@@ -24,29 +22,6 @@ bool isImageFile(const std::filesystem::path& p) {
   static const std::set<std::string> kImages{".hdr", ".exr",  ".pfm", ".tif",  ".tiff", ".png",
                                              ".jpg", ".jpeg", ".dds", ".hdri", ".rgbe"};
   return kImages.count(ext) > 0;
-}
-
-LoadedProbe load(const std::string& path, const ProbeOptions& options, const BakeOptions* grid) {
-  // Loads run side by side with each other and the bakes, so each keeps to its own thread (one_thread.h):
-  // threads that would otherwise share every core only contend (docs/decisions.md).
-  const OnOneThread oneThread;
-  LoadedProbe item;
-  item.path = path;
-  Stopwatch clock;
-  try {
-    if (grid) {
-      GridProbe g = loadGrid(path, options, *grid);
-      item.probe.emplace(std::move(g.probe));
-      item.table.emplace(std::move(g.table));
-      item.tablesMs = g.tablesMs;
-    } else {
-      item.probe.emplace(loadProbe(path, options));
-    }
-  } catch (const std::exception& e) {
-    item.error = e.what();
-  }
-  item.loadMs = clock.ms();
-  return item;
 }
 
 }  // namespace
@@ -84,24 +59,27 @@ std::vector<std::string> expandProbePaths(const std::vector<std::string>& inputs
   return out;
 }
 
-void forEachProbe(const std::vector<std::string>& paths, const ProbeOptions& options,
-                  const std::function<bool(LoadedProbe&)>& consume, const BakeOptions* grid) {
-  // Loads run ahead of the bakes on their own threads: one probe ahead, or two while the probes are small
-  // (a serial decoder such as Radiance's RLE keeps one core busy per file, and a 1K bake is shorter than its
-  // load: two loads ahead keep every core busy, a third adds nothing; docs/decisions.md). At 8K a second
-  // whole image in memory is not worth it.
-  constexpr int kSmallWidth = 2048;
-  std::deque<std::future<LoadedProbe>> ahead;
-  std::size_t next = 0;
-  auto launch = [&] { ahead.push_back(std::async(std::launch::async, load, paths[next++], options, grid)); };
-  launch();
-  while (!ahead.empty()) {
-    LoadedProbe current = ahead.front().get();
-    ahead.pop_front();
-    const std::size_t depth = current.probe && current.probe->width() <= kSmallWidth ? 2 : 1;
-    while (ahead.size() < depth && next < paths.size()) launch();
-    if (!consume(current)) break;  // the loads under way finish as `ahead` is destroyed
+LoadedProbe loadForBatch(const std::string& path, const ProbeOptions& options, const BakeOptions* grid) {
+  // Loads run side by side with each other and the bakes, so each keeps to its own thread (one_thread.h):
+  // threads that would otherwise share every core only contend (docs/decisions.md).
+  const OnOneThread oneThread;
+  LoadedProbe item;
+  item.path = path;
+  Stopwatch clock;
+  try {
+    if (grid) {
+      GridProbe g = loadGrid(path, options, *grid);
+      item.probe.emplace(std::move(g.probe));
+      item.table.emplace(std::move(g.table));
+      item.tablesMs = g.tablesMs;
+    } else {
+      item.probe.emplace(loadProbe(path, options));
+    }
+  } catch (const std::exception& e) {
+    item.error = e.what();
   }
+  item.loadMs = clock.ms();
+  return item;
 }
 
 }  // namespace probelights

@@ -24,8 +24,10 @@ struct BakedFile {
 // Reads the probe at `path` and bakes it. Throws Error for a probe that cannot be read or baked.
 BakedFile bakeFile(const std::string& path, const BakeRequest& request);
 
-// Bakes each of `paths` (expandProbePaths' files) in order, the next loading while one bakes (forEachProbe),
-// and calls consume with it, its result or its error (the others go on), until consume returns false.
+// Bakes each of `paths` (expandProbePaths' files) and calls consume with each in turn (its result or its
+// error: the others go on), until consume returns false. While consume runs, the next probes are loaded and
+// baked (runAhead: small probes one per core, each on its own thread; a large one on every core, here, while
+// the next loads).
 void bakeFiles(const std::vector<std::string>& paths, const BakeRequest& request,
                const std::function<bool(BakedFile&)>& consume);
 

@@ -1,9 +1,13 @@
-// Many probes in one process (a whole HDRI library): the inputs expanded to files, and a pipeline that loads
-// the next probe on a second thread while the caller bakes the current one. In probelights_io (it reads files
-// with OpenImageIO); the CLI's `probelights bake --out-dir` and the module's bake_files() run on it.
+// Many probes in one process (a whole HDRI library): the inputs expanded to files, a probe's load for a
+// library, and the pipeline (runAhead) that works on the next probes on threads of their own while the caller
+// takes the current one. In probelights_io (it reads files with OpenImageIO); bakeFiles (bake_file.h), under
+// the CLI's `probelights bake --out-dir` and the module's bake_files(), runs on it.
 #pragma once
 
+#include <algorithm>
+#include <deque>
 #include <functional>
+#include <future>
 #include <optional>
 #include <string>
 #include <vector>
@@ -27,12 +31,32 @@ struct LoadedProbe {
   double loadMs = 0;
 };
 
-// Calls consume(item) for each path in order, until it returns false; while it runs, the next probe is being
-// loaded (read and validated) on another thread, so a library bakes in about max(load, bake) per probe
-// rather than the sum.
-// A probe that fails to load arrives with its error; the others go on. With `grid`, each probe is read band
-// by band into the working grid that bake needs (loadGrid: item.table), for bakes that need nothing else.
-void forEachProbe(const std::vector<std::string>& paths, const ProbeOptions& options,
-                  const std::function<bool(LoadedProbe&)>& consume, const BakeOptions* grid = nullptr);
+// Loads the probe at `path` (read and validated; with `grid`, read band by band into the working grid that
+// bake needs: item.table) on the calling thread alone (one_thread.h). A probe that cannot be loaded comes
+// back with its error.
+LoadedProbe loadForBatch(const std::string& path, const ProbeOptions& options, const BakeOptions* grid);
+
+// A library's small probes (up to this width) are loaded and baked one per core, each on its own thread: a
+// 1K bake is too short to share out, and two or three such probes in memory cost little. A larger one is
+// baked on every core while the next one loads (a second 8K image in memory is not worth it).
+constexpr int kSmallProbeWidth = 2048;
+
+// Runs work(i) for i = 0, 1, ..., n - 1 on threads of their own, at most ahead(latest result) of them under
+// way at once, and hands each result to consume on the calling thread, in order, until consume returns false
+// (the works under way then finish and are dropped).
+template <class Item, class Work, class Ahead, class Consume>
+void runAhead(std::size_t n, Work work, Ahead ahead, Consume consume) {
+  std::deque<std::future<Item>> running;
+  std::size_t next = 0;
+  auto launch = [&] { running.push_back(std::async(std::launch::async, work, next++)); };
+  if (n > 0) launch();
+  while (!running.empty()) {
+    Item current = running.front().get();
+    running.pop_front();
+    const std::size_t depth = std::max<std::size_t>(1, ahead(current));
+    while (running.size() < depth && next < n) launch();
+    if (!consume(current)) break;
+  }
+}
 
 }  // namespace probelights
