@@ -11,6 +11,7 @@ case "${1:-}" in
   *) echo "usage: bash scripts/test.sh [--quick]" >&2; exit 2 ;;
 esac
 scripts/install-deps.sh --test
+scripts/usd-env.sh >/dev/null  # usd-core for the USD read-back test (downloads only the first time)
 if ! $quick; then
   # Blender as a Python module, each pinned version in a cached virtual environment (downloads only the first time).
   grep -E '^[0-9]' tests/blender/bpy-versions | while read -r version; do scripts/bpy-env.sh "$version" >/dev/null; done

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <optional>
 
 #include "bake_args.h"
@@ -18,6 +19,19 @@
 namespace probelights::cli {
 
 namespace {
+
+// The probe's path as the .usda at `usd` names it: relative to the .usda's folder, "./" or "../" first (USD
+// anchors such paths to the layer's folder), or absolute when no relative path leads there.
+std::string assetPathFrom(const std::string& usd, const std::string& probe) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path target = fs::absolute(probe, ec).lexically_normal();
+  const fs::path folder = fs::absolute(usd, ec).lexically_normal().parent_path();
+  const fs::path relative = target.lexically_relative(folder);
+  if (relative.empty()) return target.generic_string();
+  const std::string text = relative.generic_string();
+  return text.rfind("../", 0) == 0 ? text : "./" + text;
+}
 
 BakeArgs parseBakeArgs(const std::vector<std::string>& argv) {
   BakeArgs a;
@@ -43,6 +57,14 @@ BakeArgs parseBakeArgs(const std::vector<std::string>& argv) {
   table.push_back({{"-o", "--output"}, [&](const std::string& v) { a.output = nonEmpty("-o", v); }});
   table.push_back({{"--preview"}, [&](const std::string& v) { a.preview = nonEmpty("--preview", v); }});
   table.push_back({{"--gltf"}, [&](const std::string& v) { a.gltf = nonEmpty("--gltf", v); }});
+  table.push_back({{"--usd"}, [&](const std::string& v) { a.usd = nonEmpty("--usd", v); }});
+  bool usdDome = false;
+  table.push_back({{"--usd-dome"}, [&](const std::string& v) {
+                     if (v != "none" && v != "reflections")
+                       throw UsageError("--usd-dome takes none or reflections, got '" + v + "'");
+                     a.usdReflections = v == "reflections";
+                     usdDome = true;
+                   }});
   bool lightType = false, distance = false;
   table.push_back({{"--light-type"}, [&](const std::string& v) {
                      a.exportAs.kind = parseExportKind("--light-type", v);
@@ -56,8 +78,11 @@ BakeArgs parseBakeArgs(const std::vector<std::string>& argv) {
   table.push_back(flag({"--previews"}, [&] { a.previews = true; }));
   table.push_back(flag({"-q", "--quiet"}, [&] { a.quiet = true; }));
   const std::vector<std::string> probes = parseOptions(argv, table);
-  if ((lightType || distance) && a.gltf.empty())
-    throw UsageError("--light-type and --distance say how --gltf writes the lights: add --gltf FILE");
+  if ((lightType || distance) && a.gltf.empty() && a.usd.empty())
+    throw UsageError(
+        "--light-type and --distance say how --gltf and --usd write the lights: add --gltf FILE or --usd "
+        "FILE");
+  if (usdDome && a.usd.empty()) throw UsageError("--usd-dome says what --usd writes: add --usd FILE");
   if (distance && a.exportAs.kind != ExportKind::Point)
     throw UsageError("--distance places point lights: add --light-type point");
   if (maxError && a.request.accuracy.maxError == 0)
@@ -67,11 +92,12 @@ BakeArgs parseBakeArgs(const std::vector<std::string>& argv) {
     if (a.previews)
       throw UsageError("--previews goes with --out-dir (a library bake); one probe takes --preview FILE");
     a.probe = oneProbe(probes, "bake");
-    refuseOverwritingProbe(a.probe, {a.output, a.preview, a.gltf});
+    refuseOverwritingProbe(a.probe, {a.output, a.preview, a.gltf, a.usd});
   } else {
-    if (!a.output.empty() || !a.preview.empty() || !a.gltf.empty())
+    if (!a.output.empty() || !a.preview.empty() || !a.gltf.empty() || !a.usd.empty())
       throw UsageError(
-          "with --out-dir each probe's JSON (and --previews) goes there: drop -o / --preview / --gltf");
+          "with --out-dir each probe's JSON (and --previews) goes there: drop -o / --preview / --gltf / "
+          "--usd");
     if (probes.empty()) throw UsageError("no probes given: probelights bake PROBE... --out-dir DIR");
     a.probes = probes;
   }
@@ -161,6 +187,9 @@ int bakeCommand(const std::vector<std::string>& argv) {
   const BakedFile baked = bakeFile(a.probe, a.request);
   const Probe& probe = *baked.probe;
   const EvaluatedBake& done = *baked.result;
+  if (a.usdReflections && probe.projection().kind() != ProjectionKind::LatLong)
+    throw Error("--usd-dome reflections shows the probe as a lat-long dome; '" + a.probe + "' is " +
+                toString(probe.projection().kind()) + ": convert it to lat-long first, or drop --usd-dome");
   if (!a.output.empty()) {
     writeJson(bakeToJson({a.probe, probe, a.request.bake, done, baked.loadMs}), a.output, 2);
     if (a.output == "-") a.quiet = true;
@@ -168,15 +197,22 @@ int bakeCommand(const std::vector<std::string>& argv) {
   if (!a.preview.empty())
     writeImageWhole(a.preview, [&](const std::string& tmp) { writePreview(probe, done.bake, tmp); });
   Rgb dropped{};
-  if (!a.gltf.empty())
-    writeWhole(a.gltf,
-               gltfDocument(done.bake.lights, a.exportAs, "probelights " PROBELIGHTS_VERSION, &dropped));
+  const char* generator = "probelights " PROBELIGHTS_VERSION;
+  if (!a.gltf.empty()) writeWhole(a.gltf, gltfDocument(done.bake.lights, a.exportAs, generator, &dropped));
+  if (!a.usd.empty()) {
+    ExportOptions usd = a.exportAs;
+    if (a.usdReflections) usd.reflectionsDome = assetPathFrom(a.usd, a.probe);
+    writeWhole(a.usd, usdDocument(done.bake.lights, usd, generator, &dropped));
+  }
   if (!a.quiet) {
     printSummary(a, probe, done, baked.loadMs);
     if (dropped[0] < 0 || dropped[1] < 0 || dropped[2] < 0)
       std::printf(
-          "note       --gltf: glTF lights cannot be negative; channels below zero written as 0 (rgb %.4g, "
+          "note       %s: the lights cannot be negative there; channels below zero written as 0 (rgb %.4g, "
           "%.4g, %.4g W/m^2 left out)\n",
+          a.gltf.empty()  ? "--usd"
+          : a.usd.empty() ? "--gltf"
+                          : "--gltf and --usd",
           dropped[0], dropped[1], dropped[2]);
   }
   return 0;

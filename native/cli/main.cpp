@@ -41,7 +41,11 @@ const char* kUsageOwn =
   --preview FILE                    write a picture of the regions and lights (PNG)
   --gltf FILE                       write the lights as glTF 2.0 (KHR_lights_punctual: suns in lux, points in
                                     candela, Y up; docs/export.md)
-  --light-type sun|point            what --gltf writes (default sun)
+  --usd FILE                        write the lights as USD (UsdLux, .usda: DistantLights normalized in lux,
+                                    or SphereLights; Z up, metres; docs/export.md)
+  --usd-dome none|reflections       reflections: with a DomeLight of the probe for reflections alone, the
+                                    lamps for diffuse light alone (as the add-on splits them; default none)
+  --light-type sun|point            what --gltf and --usd write (default sun)
   --distance M                      --light-type point: metres from the origin (default 10)
   --out-dir DIR                     bake many probes (files, folders, quoted globs) into DIR: a JSON each and
                                     summary.json; the next loads while one bakes; exit 3 if some failed

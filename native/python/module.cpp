@@ -253,12 +253,9 @@ std::string optionsDoc() {
   return doc;
 }
 
-// glTF text (light_export.h) of a result's lights: the dict bake() returns under "lights" (its direction and
-// rgb columns; angle and solid_angle when present, kept in the lights' extras).
-std::string gltfText(const py::dict& lights, const std::string& lightType, double distance) {
-  ExportOptions options;
-  options.kind = parseExportKind("light_type", lightType);
-  options.distance = checkedDistance("distance", distance);
+// A result's lights (the dict bake() returns under "lights": its direction and rgb columns; angle and
+// solid_angle when present) as the exporters (light_export.h) take them.
+std::vector<Light> exportedLights(const py::dict& lights) {
   auto column = [&](const char* key, py::ssize_t width, bool required) {
     if (!lights.contains(key)) {
       if (required)
@@ -285,7 +282,26 @@ std::string gltfText(const py::dict& lights, const std::string& lightType, doubl
     if (angle.size()) l.angle = angle.at(i);
     if (solidAngle.size()) l.solidAngle = solidAngle.at(i);
   }
-  return gltfDocument(out, options, "probelights " PROBELIGHTS_VERSION);
+  return out;
+}
+
+ExportOptions exportOptions(const std::string& lightType, double distance) {
+  ExportOptions options;
+  options.kind = parseExportKind("light_type", lightType);
+  options.distance = checkedDistance("distance", distance);
+  return options;
+}
+
+std::string gltfText(const py::dict& lights, const std::string& lightType, double distance) {
+  return gltfDocument(exportedLights(lights), exportOptions(lightType, distance),
+                      "probelights " PROBELIGHTS_VERSION);
+}
+
+std::string usdText(const py::dict& lights, const std::string& lightType, double distance,
+                    const std::string& reflections) {
+  ExportOptions options = exportOptions(lightType, distance);
+  options.reflectionsDome = reflections;
+  return usdDocument(exportedLights(lights), options, "probelights " PROBELIGHTS_VERSION);
 }
 
 // Every registered placement method's name (placement.h).
@@ -443,6 +459,13 @@ PYBIND11_MODULE(_probelights, m) {
       py::arg("distance") = 10.0,
       "glTF 2.0 text (KHR_lights_punctual, Y up) of a bake's lights (its result's 'lights'): suns in lux, or "
       "point lights `distance` metres out in candela, at 683 lm/W as Blender's glTF importer reads them.");
+  m.def(
+      "usd", &usdText, py::arg("lights"), py::kw_only(), py::arg("light_type") = "sun",
+      py::arg("distance") = 10.0, py::arg("reflections") = "",
+      "USD text (usda, UsdLux, Z up, metres) of a bake's lights: DistantLights normalized, intensity in lux "
+      "(the probe's values read as nits), or SphereLights `distance` metres out. reflections: an asset path "
+      "(relative to where the file will be, './' or '../' first, or absolute) of the lat-long probe, shown "
+      "by a DomeLight for reflections alone while the lights take diffuse light alone (docs/export.md).");
   m.def(
       "release_memory", [] { releaseKeptBuffers(); },
       "Give back the table buffers kept for the next bake (memory.h: up to two, e.g. 84 MB each for 2K "

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "probelights/error.h"
+#include "probelights/geometry.h"
 
 namespace probelights {
 
@@ -20,10 +21,28 @@ std::string number(double v) {
   return std::string(text.data(), end);
 }
 
-std::string numbers(std::initializer_list<double> vs) {
-  std::string out = "[";
+// "[a, b, c]" (JSON's arrays), or with other brackets "(a, b, c)" (usda's tuples).
+std::string numbers(std::initializer_list<double> vs, char open = '[', char close = ']') {
+  std::string out(1, open);
   for (double v : vs) out += (out.size() > 1 ? ", " : "") + number(v);
-  return out + "]";
+  return out + close;
+}
+
+// Text inside a usda string: quotes and backslashes escaped, line breaks as spaces.
+std::string usdString(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += (c == '\n' || c == '\r') ? ' ' : c;
+  }
+  return out;
+}
+
+// A usda asset path: @path@, or @@@path@@@ for one holding an @ (usda's two forms).
+std::string assetPath(const std::string& path) {
+  if (path.find("@@@") != std::string::npos || path.find_first_of("\n\r") != std::string::npos)
+    throw Error("cannot name '" + path + "' in a USD file (it holds @@@ or a line break)");
+  return path.find('@') == std::string::npos ? "@" + path + "@" : "@@@" + path + "@@@";
 }
 
 // Blender's frame (Z up) to glTF's (Y up).
@@ -37,6 +56,45 @@ std::array<double, 4> turnZTo(const Vec3& d) {
   const double x = -d.y, y = d.x;  // (0, 0, 1) x d
   const double n = std::sqrt(x * x + y * y + w * w);
   return {x / n, y / n, 0, w / n};
+}
+
+// A light as both formats write it: its rgb with channels below zero (or not finite) as 0, the sum of what
+// was dropped added to `clamped` (when given), its largest channel and its unit direction (Blender's frame).
+struct Written {
+  Rgb rgb;
+  double peak;
+  Vec3 direction;
+  std::string name;
+};
+
+std::vector<Written> written(const std::vector<Light>& lights, ExportKind kind, Rgb* clamped) {
+  if (clamped) *clamped = {0, 0, 0};
+  std::vector<Written> out;
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    const Light& l = lights[i];
+    Written w{l.rgb, 0, {0, 0, 1}, ""};
+    for (int c = 0; c < 3; ++c) {
+      if (w.rgb[c] < 0 || !std::isfinite(w.rgb[c])) {
+        if (clamped && std::isfinite(w.rgb[c])) (*clamped)[c] += w.rgb[c];
+        w.rgb[c] = 0;
+      }
+    }
+    w.peak = std::max({w.rgb[0], w.rgb[1], w.rgb[2]});
+    const Vec3& d = l.direction;
+    const double n = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+    if (n > 0 && std::isfinite(n)) w.direction = {d.x / n, d.y / n, d.z / n};
+    const std::string index = std::to_string(i);
+    w.name = (kind == ExportKind::Sun ? "sun_" : "point_") +
+             std::string(index.size() < 3 ? 3 - index.size() : 0, '0') + index;
+    out.push_back(std::move(w));
+  }
+  return out;
+}
+
+// The light's colour: its rgb over its largest channel (white when it has none).
+std::array<double, 3> colourOf(const Written& w) {
+  if (!(w.peak > 0)) return {1, 1, 1};
+  return {w.rgb[0] / w.peak, w.rgb[1] / w.peak, w.rgb[2] / w.peak};
 }
 
 }  // namespace
@@ -55,36 +113,24 @@ double checkedDistance(const std::string& option, double metres) {
 
 std::string gltfDocument(const std::vector<Light>& lights, const ExportOptions& options,
                          const std::string& generator, Rgb* clampedRgb) {
-  if (clampedRgb) *clampedRgb = {0, 0, 0};
+  const std::vector<Written> all = written(lights, options.kind, clampedRgb);
   const std::string asset = "{\n  \"asset\": {\"version\": \"2.0\", \"generator\": \"" + generator + "\"},\n";
   // glTF's arrays, when present, hold at least one item: no lights is a scene with no nodes.
   if (lights.empty()) return asset + "  \"scene\": 0,\n  \"scenes\": [{\"name\": \"probelights\"}]\n}\n";
   const bool sun = options.kind == ExportKind::Sun;
   std::string defs, nodes, indices;
-  for (std::size_t i = 0; i < lights.size(); ++i) {
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    const Written& w = all[i];
     const Light& l = lights[i];
-    Rgb rgb = l.rgb;
-    for (int c = 0; c < 3; ++c) {
-      if (rgb[c] < 0 || !std::isfinite(rgb[c])) {
-        if (clampedRgb && std::isfinite(rgb[c])) (*clampedRgb)[c] += rgb[c];
-        rgb[c] = 0;
-      }
-    }
-    const double peak = std::max({rgb[0], rgb[1], rgb[2]});
-    const Vec3 d = toGltf(l.direction);
-    const double n = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
-    const Vec3 u = n > 0 ? Vec3{d.x / n, d.y / n, d.z / n} : Vec3{0, 1, 0};
-    std::string name = std::to_string(i);
-    name = (sun ? "sun_" : "point_") + std::string(name.size() < 3 ? 3 - name.size() : 0, '0') + name;
-    const double intensity = (sun ? peak : peak * options.distance * options.distance) * kLumensPerWatt;
-    const std::string colour =
-        peak > 0 ? numbers({rgb[0] / peak, rgb[1] / peak, rgb[2] / peak}) : "[1, 1, 1]";
-    defs += std::string(i ? ",\n" : "") + "        {\"name\": \"" + name + "\", \"type\": \"" +
-            (sun ? "directional" : "point") + "\", \"color\": " + colour +
+    const Vec3 u = toGltf(w.direction);
+    const double intensity = (sun ? w.peak : w.peak * options.distance * options.distance) * kLumensPerWatt;
+    const auto c = colourOf(w);
+    defs += std::string(i ? ",\n" : "") + "        {\"name\": \"" + w.name + "\", \"type\": \"" +
+            (sun ? "directional" : "point") + "\", \"color\": " + numbers({c[0], c[1], c[2]}) +
             ", \"intensity\": " + number(intensity) + ", \"extras\": {\"angle\": " + number(l.angle) +
             ", \"solid_angle\": " + number(l.solidAngle) + "}}";
     const auto q = turnZTo(u);
-    nodes += std::string(i ? ",\n" : "") + "    {\"name\": \"" + name + "\", ";
+    nodes += std::string(i ? ",\n" : "") + "    {\"name\": \"" + w.name + "\", ";
     if (sun)
       nodes += "\"rotation\": " + numbers({q[0], q[1], q[2], q[3]});
     else
@@ -98,6 +144,63 @@ std::string gltfDocument(const std::vector<Light>& lights, const ExportOptions& 
          "  \"extensions\": {\"KHR_lights_punctual\": {\"lights\": [\n" +
          defs + "\n  ]}},\n  \"scene\": 0,\n  \"scenes\": [{\"name\": \"probelights\", \"nodes\": [" +
          indices + "]}],\n  \"nodes\": [\n" + nodes + "\n  ]\n}\n";
+}
+
+std::string usdDocument(const std::vector<Light>& lights, const ExportOptions& options,
+                        const std::string& generator, Rgb* clampedRgb) {
+  const std::vector<Written> all = written(lights, options.kind, clampedRgb);
+  const bool sun = options.kind == ExportKind::Sun, dome = !options.reflectionsDome.empty();
+  auto tuple = [](std::initializer_list<double> vs) { return numbers(vs, '(', ')'); };
+  // The Sun's angular diameter, the smallest a point light is drawn at (radians).
+  constexpr double kSunDiameter = 0.53 * kPi / 180;
+  std::string out = "#usda 1.0\n(\n    defaultPrim = \"probelights\"\n    doc = \"" + usdString(generator) +
+                    "\"\n    metersPerUnit = 1\n    upAxis = \"Z\"\n)\n\ndef Xform \"probelights\"\n{\n";
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    const Written& w = all[i];
+    const Light& l = lights[i];
+    const auto c = colourOf(w);
+    const double angle = std::isfinite(l.angle) && l.angle > 0 ? std::min(l.angle, kPi) : 0;
+    out += std::string(i ? "\n" : "") + "    def " + (sun ? "DistantLight" : "SphereLight") + " \"" + w.name +
+           "\"\n    {\n";
+    if (sun) out += "        float inputs:angle = " + number(angle * 180 / kPi) + "\n";
+    out += "        color3f inputs:color = " + tuple({c[0], c[1], c[2]}) + "\n";
+    if (dome) out += "        float inputs:diffuse = 1\n";
+    const double d = options.distance;
+    out += "        float inputs:intensity = " + number(sun ? w.peak : 4 * w.peak * d * d) + "\n";
+    out += "        bool inputs:normalize = 1\n";
+    if (!sun)
+      out +=
+          "        float inputs:radius = " + number(d * std::sin(std::max(angle, kSunDiameter) / 2)) + "\n";
+    if (dome) out += "        float inputs:specular = 0\n";
+    out += "        custom double probelights:solidAngle = " + number(l.solidAngle) + "\n";
+    if (sun) {
+      const auto q = turnZTo(w.direction);  // (x, y, z, w); USD's quaternions are written (w, x, y, z)
+      out += "        quatf xformOp:orient = " + tuple({q[3], q[0], q[1], q[2]}) +
+             "\n        uniform token[] xformOpOrder = [\"xformOp:orient\"]\n";
+    } else {
+      out += "        double3 xformOp:translate = " +
+             tuple({w.direction.x * d, w.direction.y * d, w.direction.z * d}) +
+             "\n        uniform token[] xformOpOrder = [\"xformOp:translate\"]\n";
+    }
+    out += "    }\n";
+  }
+  if (dome) {
+    // UsdLux's DomeLight keeps its pole on +Y with the image's centre on +Z (OpenEXR's lat-long), whatever
+    // the stage's up axis; Blender's lat-long has its pole on +Z and its centre on +X. The turn of 120
+    // degrees about (1, 1, 1) takes +X to +Y, +Y to +Z and +Z to +X: the quaternion (0.5, 0.5, 0.5, 0.5).
+    out += std::string(all.empty() ? "" : "\n") +
+           "    def DomeLight \"reflections\"\n    {\n"
+           "        float inputs:diffuse = 0\n"
+           "        float inputs:intensity = 1\n"
+           "        float inputs:specular = 1\n"
+           "        asset inputs:texture:file = " +
+           assetPath(options.reflectionsDome) +
+           "\n"
+           "        token inputs:texture:format = \"latlong\"\n"
+           "        quatf xformOp:orient = (0.5, 0.5, 0.5, 0.5)\n"
+           "        uniform token[] xformOpOrder = [\"xformOp:orient\"]\n    }\n";
+  }
+  return out + "}\n";
 }
 
 }  // namespace probelights

@@ -1,7 +1,15 @@
-"""Lights leaving for other renderers, read back by a reader nobody here wrote: the CLI's glTF (KHR_lights_punctual)
-imported by Blender's own glTF importer (io_scene_gltf2, its default "Standard" lighting units) must give back the
-lights' directions and irradiances, and its suns must render (Cycles, the diffuse sphere over a plane of
-test_render.py) as the world does and as the add-on's own bake of the same probe does."""
+"""Lights leaving for other renderers, read back by readers nobody here wrote: the CLI's glTF (KHR_lights_punctual)
+imported by Blender's own glTF importer (io_scene_gltf2, its default "Standard" lighting units) and its USD (UsdLux)
+imported by Blender's own USD importer must give back the lights' directions and irradiances, and their suns must
+render (Cycles, the diffuse sphere over a plane of test_render.py) as the world does and as the add-on's own bake of
+the same probe does.
+
+Blender's USD importer does not read a DistantLight as the UsdLux schema defines it (a normalized one's intensity
+is the illuminance on a facing surface, its angle the angular diameter; tests/python/test_usd.py reads our files
+with OpenUSD itself): measured in bpy 4.5.15, 5.0.1, 5.2.3 and 5.3.0, it makes a sun's strength 4x the intensity and
+its angle 2x (its exporter writes the inverse: strength / 4, angle / 2), so these tests check that reading, and
+the render imports with its Light Intensity Scale at 1/4 (docs/export.md says so to users). Debian's Blender 3.4 has
+no USD importer: the USD tests say so and pass."""
 
 import json
 import math
@@ -29,35 +37,56 @@ SAMPLES = 128 if bpy.app.version >= (4, 0, 0) else 256
 BOUND = 0.025  # test_render.py's bound for 16 suns
 
 
-def cli_bake(folder, *extra):
-    """The CLI's lights (its JSON) and the glTF it wrote beside them."""
-    lights, gltf = os.path.join(folder, "lights.json"), os.path.join(folder, "lights.gltf")
-    subprocess.run([CLI, "bake", harness.BUNDLED_PROBE, *ADDON_LIKE, "-q", "-o", lights, "--gltf", gltf, *extra],
+# Blender's USD importer's reading of a DistantLight (above): strength = USD_SUN_STRENGTH x intensity, angle =
+# USD_SUN_ANGLE x angle (even past 180 degrees, the largest its panel offers).
+USD_SUN_STRENGTH, USD_SUN_ANGLE = 4.0, 2.0
+
+
+def cli_bake(folder, *extra, to="gltf"):
+    """The CLI's lights (its JSON: directions, rgb with negative channels as 0, fitted angles) and the glTF or USD
+    file it wrote beside them."""
+    lights, out = os.path.join(folder, "lights.json"), os.path.join(folder, "lights." + ("usda" if to == "usd" else to))
+    subprocess.run([CLI, "bake", harness.BUNDLED_PROBE, *ADDON_LIKE, "-q", "-o", lights, "--" + to, out, *extra],
                    check=True)
     with open(lights) as f:
         got = json.load(f)["lights"]
-    return np.array([l["direction"] for l in got]), np.maximum(np.array([l["rgb"] for l in got]), 0.0), gltf
+    return (np.array([l["direction"] for l in got]), np.maximum(np.array([l["rgb"] for l in got]), 0.0),
+            np.array([l["angle"] for l in got]), out)
 
 
-def imported(gltf):
+def has_usd():
+    if "usd_import" in dir(bpy.ops.wm):
+        return True
+    print("  skipped: this Blender (%s) has no USD importer" % bpy.app.version_string)
+    return False
+
+
+def imported(path, **options):
     before = set(bpy.data.objects)
-    assert bpy.ops.import_scene.gltf(filepath=gltf) == {"FINISHED"}
+    if path.endswith(".usda"):
+        assert bpy.ops.wm.usd_import(filepath=path, **options) == {"FINISHED"}
+    else:
+        assert bpy.ops.import_scene.gltf(filepath=path, **options) == {"FINISHED"}
     bpy.context.view_layer.update()  # the new objects' matrix_world
     new = [o for o in bpy.data.objects if o not in before and o.type == "LIGHT"]
     return sorted(new, key=lambda o: o.name)
 
 
+def off_degrees(sun, d):
+    shines_from = np.array(sun.matrix_world.to_3x3().col[2])  # a sun shines along its local -Z
+    u = d / np.linalg.norm(d)
+    return np.degrees(np.arctan2(np.linalg.norm(np.cross(shines_from, u)), shines_from @ u))  # well-conditioned
+
+
 def test_gltf_suns_come_back_through_blenders_importer():
     harness.empty_scene()
     with tempfile.TemporaryDirectory() as folder:
-        directions, rgb, gltf = cli_bake(folder)
+        directions, rgb, _, gltf = cli_bake(folder)
         suns = imported(gltf)
     assert len(suns) == len(directions) and all(o.data.type == "SUN" for o in suns)
     for sun, d, e in zip(suns, directions, rgb):
-        shines_from = np.array(sun.matrix_world.to_3x3().col[2])  # a sun shines along its local -Z
-        u = d / np.linalg.norm(d)
-        off = np.degrees(np.arctan2(np.linalg.norm(np.cross(shines_from, u)), shines_from @ u))  # well-conditioned
-        assert off < 1e-3, (sun.name, d, shines_from, off)
+        off = off_degrees(sun, d)
+        assert off < 1e-3, (sun.name, d, off)
         given = np.array(sun.data.color) * sun.data.energy  # a facing surface's irradiance, W/m^2 (4.0+: any angle)
         assert np.allclose(given, e, rtol=1e-5, atol=1e-7 * e.max()), (sun.name, given, e)
     print("  %d suns back from glTF: directions within 0.001 degrees, irradiance within 1e-5" % len(suns))
@@ -67,7 +96,7 @@ def test_gltf_points_come_back_through_blenders_importer():
     harness.empty_scene()
     distance = 7.0
     with tempfile.TemporaryDirectory() as folder:
-        directions, rgb, gltf = cli_bake(folder, "--light-type", "point", "--distance", str(distance))
+        directions, rgb, _, gltf = cli_bake(folder, "--light-type", "point", "--distance", str(distance))
         points = imported(gltf)
     assert len(points) == len(directions) and all(o.data.type == "POINT" for o in points)
     for point, d, e in zip(points, directions, rgb):
@@ -90,7 +119,7 @@ def test_gltf_suns_render_as_the_world_and_the_addons_bake():
     assert bpy.ops.probe_lights.restore() == {"FINISHED"}
     bpy.context.scene.world = None  # the glTF's suns alone (a black world)
     with tempfile.TemporaryDirectory() as folder:
-        _, _, gltf = cli_bake(folder)
+        gltf = cli_bake(folder)[3]
         suns = imported(gltf)
         # glTF has no sun angle: the importer leaves Blender's default; the fitted one travels in the extras.
         angles = [(s.data.angle, s.data.get("angle")) for s in suns]
@@ -104,7 +133,76 @@ def test_gltf_suns_render_as_the_world_and_the_addons_bake():
     assert to_world < BOUND and to_addon < BOUND, (to_world, to_addon)
 
 
+def test_usd_suns_come_back_through_blenders_importer():
+    if not has_usd():
+        return
+    harness.empty_scene()
+    with tempfile.TemporaryDirectory() as folder:
+        directions, rgb, angles, usd = cli_bake(folder, to="usd")
+        suns = imported(usd)
+    assert len(suns) == len(directions) and all(o.data.type == "SUN" for o in suns)
+    worst = 0.0
+    for sun, d, e, angle in zip(suns, directions, rgb, angles):
+        worst = max(worst, off_degrees(sun, d))
+        given = np.array(sun.data.color) * sun.data.energy / USD_SUN_STRENGTH
+        assert np.allclose(given, e, rtol=1e-5, atol=1e-6 * e.max()), (sun.name, given, e)
+        assert math.isclose(sun.data.angle, USD_SUN_ANGLE * angle, rel_tol=1e-5), (
+            sun.name, math.degrees(sun.data.angle), math.degrees(angle))
+    assert worst < 1e-3, worst
+    print("  %d suns back from USD: directions within %.1e degrees; Blender's strength %gx the irradiance and angle "
+          "%gx the fitted one, as measured" % (len(suns), worst, USD_SUN_STRENGTH, USD_SUN_ANGLE))
+
+
+def test_usd_points_come_back_through_blenders_importer():
+    if not has_usd():
+        return
+    harness.empty_scene()
+    distance = 7.0
+    with tempfile.TemporaryDirectory() as folder:
+        directions, rgb, angles, usd = cli_bake(folder, "--light-type", "point", "--distance", str(distance), to="usd")
+        points = imported(usd)
+    assert len(points) == len(directions) and all(o.data.type == "POINT" for o in points)
+    for point, d, e, angle in zip(points, directions, rgb, angles):
+        at = np.array(point.matrix_world.translation)
+        assert np.allclose(at, distance * d / np.linalg.norm(d), atol=1e-5), (point.name, at, d)
+        given = np.array(point.data.color) * point.data.energy / (4 * math.pi * distance ** 2)
+        assert np.allclose(given, e, rtol=1e-5, atol=1e-6 * e.max()), (point.name, given, e)
+        radius = distance * math.sin(max(angle, math.radians(0.53)) / 2)
+        assert math.isclose(point.data.shadow_soft_size, radius, rel_tol=1e-5), (point.name, radius)
+    print("  %d point lights back from USD at %g m: positions, the origin's irradiance and the fitted cones kept" % (
+        len(points), distance))
+
+
+def test_usd_suns_render_as_the_world_and_the_addons_bake():
+    if not has_usd():
+        return
+    harness.empty_scene()
+    harness.env_world(bpy.data.images.load(harness.BUNDLED_PROBE))
+    render_scene.sphere_over_plane(WIDTH, HEIGHT, SAMPLES)
+    world_lit = render_scene.render()
+    assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=16) == {"FINISHED"}
+    addon_lit = render_scene.render()
+    assert bpy.ops.probe_lights.restore() == {"FINISHED"}
+    bpy.context.scene.world = None  # the USD's suns alone (a black world)
+    with tempfile.TemporaryDirectory() as folder:
+        usd = cli_bake(folder, to="usd")[3]
+        # Blender's importer makes suns 4x the UsdLux strength: its Light Intensity Scale takes it back.
+        suns = imported(usd, light_intensity_scale=1 / USD_SUN_STRENGTH)
+        angles = [s.data.angle for s in suns]
+    usd_lit = render_scene.render()
+    to_world, blocks = render_scene.block_difference(world_lit, usd_lit)
+    to_addon, _ = render_scene.block_difference(addon_lit, usd_lit)
+    print("  16 suns from USD against the world: %.2f %%, against the add-on's bake: %.2f %% (%d lit 8x8 blocks, "
+          "%d spp; sun angles %.1f-%.1f degrees as imported, twice the fitted ones)" % (
+              100 * to_world, 100 * to_addon, blocks, SAMPLES, math.degrees(min(angles)), math.degrees(max(angles))),
+          flush=True)
+    assert to_world < BOUND and to_addon < BOUND, (to_world, to_addon)
+
+
 if __name__ == "__main__":
     harness.run([test_gltf_suns_come_back_through_blenders_importer,
                  test_gltf_points_come_back_through_blenders_importer,
-                 test_gltf_suns_render_as_the_world_and_the_addons_bake])
+                 test_gltf_suns_render_as_the_world_and_the_addons_bake,
+                 test_usd_suns_come_back_through_blenders_importer,
+                 test_usd_points_come_back_through_blenders_importer,
+                 test_usd_suns_render_as_the_world_and_the_addons_bake])

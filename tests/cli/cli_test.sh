@@ -46,6 +46,11 @@ expect_error "bad light type" "sun or point" bake "$probe" --gltf "$tmp/x.gltf" 
 expect_error "zero distance" "above 0" bake "$probe" --gltf "$tmp/x.gltf" --light-type point --distance 0
 expect_error "glTF in a library" "drop -o / --preview / --gltf" bake "$probe" --out-dir "$tmp/lib" --gltf "$tmp/x.gltf"
 expect_error "glTF over the probe" "is the probe itself" bake "$probe" --gltf "$probe"
+expect_error "USD dome without USD" "add --usd FILE" bake "$probe" --usd-dome reflections
+expect_error "bad USD dome" "none or reflections" bake "$probe" --usd "$tmp/x.usda" --usd-dome sky
+expect_error "USD in a library" "drop -o / --preview / --gltf / --usd" bake "$probe" --out-dir "$tmp/lib" --usd "$tmp/x.usda"
+expect_error "USD over the probe" "is the probe itself" bake "$probe" --usd "$probe"
+expect_error "USD dome of a mirror ball" "lat-long dome" bake "$tmp/square.pfm" --projection mirror-ball --usd "$tmp/b.usda" --usd-dome reflections
 
 check() {  # name, command
   if eval "$2"; then passed=$((passed + 1)); else failed=$((failed + 1)); echo "FAIL $1"; fi
@@ -69,6 +74,8 @@ PY"
 check "preview is a PNG" "head -c 8 '$tmp/p.png' | od -An -c | grep -q 'P   N   G'"
 check "bake writes glTF lights" \
   "'$bin' bake '$probe' --lights 8 --gltf '$tmp/l.gltf' -q && python3 -c \"import json,sys; d=json.load(open(sys.argv[1])); assert len(d['nodes']) == 8 and d['extensionsUsed'] == ['KHR_lights_punctual']\" '$tmp/l.gltf'"
+check "bake writes USD lights" \
+  "'$bin' bake '$probe' --lights 8 --usd '$tmp/l.usda' --light-type point -q && [[ \$(grep -c 'def SphereLight' '$tmp/l.usda') -eq 8 ]] && [[ ! -e '$tmp/b.usda' ]]"
 check "summary shows timings and energy" "grep -q 'time (ms)' '$tmp/summary' && grep -q 'max rel. diff' '$tmp/summary'"
 check "version" "'$bin' --version | grep -q '^probelights [0-9]'"
 check "JSON to stdout" "'$bin' bake '$probe' --lights 2 -o - | python3 -c 'import json,sys; json.load(sys.stdin)'"

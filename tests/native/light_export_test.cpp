@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <nlohmann/json.hpp>
+
+#include "probelights/geometry.h"
 
 namespace probelights {
 namespace {
@@ -55,6 +58,31 @@ TEST(LightExport, PointsSitAtTheDistanceWithCandelaForTheOriginsIrradiance) {
   EXPECT_DOUBLE_EQ(doc["extensions"]["KHR_lights_punctual"]["lights"][0]["intensity"].get<double>(),
                    16 * kLumensPerWatt);
   EXPECT_EQ(doc["nodes"][0]["translation"], nlohmann::json({0, 0, -4}));  // Blender's +Y is glTF's -Z
+}
+
+// USD (usdDocument): what tests/python/test_usd.py cannot see through OpenUSD's reader: the same clamping as
+// glTF's, and what is written for a light with no fitted angle.
+TEST(LightExport, UsdWritesNegativeChannelsAsZeroAndParallelSunsWithoutAnAngle) {
+  Rgb dropped{};
+  const std::string usd = usdDocument({light({0, 1, 0}, {-0.5, 2, 1})}, {}, "t", &dropped);
+  EXPECT_NE(usd.find("color3f inputs:color = (0, 1, 0.5)"), std::string::npos) << usd;
+  EXPECT_NE(usd.find("float inputs:intensity = 2\n"), std::string::npos) << usd;
+  EXPECT_NE(usd.find("float inputs:angle = 0\n"), std::string::npos) << usd;  // parallel light
+  EXPECT_EQ(usd.find("DomeLight"), std::string::npos);
+  EXPECT_EQ(usd.find("inputs:specular"), std::string::npos);  // the lamps take all of the light
+  EXPECT_DOUBLE_EQ(dropped[0], -0.5);
+}
+
+TEST(LightExport, UsdPointsWithoutAnAngleAreTheSunsSize) {
+  ExportOptions points;
+  points.kind = ExportKind::Point;
+  points.distance = 4;
+  const std::string usd = usdDocument({light({0, 0, 1}, {1, 1, 1})}, points, "t");
+  EXPECT_NE(usd.find("float inputs:intensity = 64\n"), std::string::npos) << usd;  // 4 E d^2
+  const std::string radius = "float inputs:radius = ";
+  const auto at = usd.find(radius);
+  ASSERT_NE(at, std::string::npos);
+  EXPECT_NEAR(std::stod(usd.substr(at + radius.size())), 4 * std::sin(0.53 * kPi / 360), 1e-15);
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// The lights as other renderers read them: glTF 2.0's KHR_lights_punctual.
+// The lights as other renderers read them: glTF 2.0's KHR_lights_punctual and USD's UsdLux (docs/export.md).
 #pragma once
 
 #include <string>
@@ -13,6 +13,11 @@ enum class ExportKind { Sun, Point };
 struct ExportOptions {
   ExportKind kind = ExportKind::Sun;
   double distance = 10;  // metres from the origin, point lights (a sun's position does not light anything)
+  // USD only: a DomeLight showing this lat-long image (an asset path as it is to be written: relative to the
+  // .usda's folder, "./" or "../" first, or absolute) for reflections alone, the lamps then lighting diffuse
+  // surfaces alone (UsdLux's diffuse and specular multipliers): the add-on's default split, where the world
+  // keeps the reflections. Empty: no dome, the lamps take all of the light.
+  std::string reflectionsDome;
 };
 
 // The words of the CLI's --light-type and the module's light_type= ("sun", "point"), and the distances both
@@ -37,5 +42,20 @@ inline constexpr double kLumensPerWatt = 683;
 // given) receives the sum of what was dropped.
 std::string gltfDocument(const std::vector<Light>& lights, const ExportOptions& options,
                          const std::string& generator, Rgb* clampedRgb = nullptr);
+
+// A USD layer (usda text, Z up, metres: Blender's frame as it is) with one UsdLux light per light under
+// /probelights, following the UsdLux schema's "Quantities and Units" (OpenUSD 24.x+: a pixel value of 1 is
+// 1 nit, so the probe's values are taken as nits):
+//   sun    DistantLight, normalize on: its intensity is the illuminance on a facing surface, the largest
+//          channel of the rgb (W/m^2 read as lux, the probe's unit), colour the rgb over it; angle the fitted
+//          cone's angular diameter in degrees (0 when none was fitted: parallel light); its -Z (the way a
+//          UsdLux light shines) points from the light's direction to the origin (xformOp:orient).
+//   point  SphereLight at `distance` along the direction, normalize on (luminance = intensity / 4 pi r^2),
+//          so the origin's irradiance is E = intensity / (4 d^2) whatever its radius: intensity = 4 E d^2;
+//          radius d sin(angle / 2), the fitted cone seen from the origin (at least the Sun's 0.53 degrees).
+// The fitted solid angle goes in a custom attribute, probelights:solidAngle. Negative channels are written
+// as zero, as gltfDocument does (`clampedRgb`).
+std::string usdDocument(const std::vector<Light>& lights, const ExportOptions& options,
+                        const std::string& generator, Rgb* clampedRgb = nullptr);
 
 }  // namespace probelights
