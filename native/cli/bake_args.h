@@ -11,10 +11,10 @@
 namespace probelights::cli {
 
 struct BakeArgs {
-  std::string probe, output, preview, gltf, usd;  // one probe
-  ExportOptions exportAs;                         // how --gltf and --usd write the lights
-  bool usdReflections = false;                    // --usd-dome reflections
-  std::vector<std::string> probes;                // a library: files, directories, globs
+  std::string probe, output, preview, gltf, usd, residual;  // one probe
+  ExportOptions exportAs;                                   // how --gltf and --usd write the lights
+  bool usdReflections = false;                              // --usd-dome reflections
+  std::vector<std::string> probes;                          // a library: files, directories, globs
   std::string outDir;
   bool previews = false;
   BakeRequest request;  // the bake (request.h); keepPixels when a preview is asked for

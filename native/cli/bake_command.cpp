@@ -11,6 +11,7 @@
 #include "options.h"
 #include "probelights/bake_file.h"
 #include "probelights/evaluate.h"
+#include "probelights/image_file.h"
 #include "probelights/placement.h"
 #include "probelights/preview.h"
 #include "probelights/stopwatch.h"
@@ -58,6 +59,7 @@ BakeArgs parseBakeArgs(const std::vector<std::string>& argv) {
   table.push_back({{"--preview"}, [&](const std::string& v) { a.preview = nonEmpty("--preview", v); }});
   table.push_back({{"--gltf"}, [&](const std::string& v) { a.gltf = nonEmpty("--gltf", v); }});
   table.push_back({{"--usd"}, [&](const std::string& v) { a.usd = nonEmpty("--usd", v); }});
+  table.push_back({{"--residual"}, [&](const std::string& v) { a.residual = nonEmpty("--residual", v); }});
   bool usdDome = false;
   table.push_back({{"--usd-dome"}, [&](const std::string& v) {
                      if (v != "none" && v != "reflections")
@@ -92,12 +94,14 @@ BakeArgs parseBakeArgs(const std::vector<std::string>& argv) {
     if (a.previews)
       throw UsageError("--previews goes with --out-dir (a library bake); one probe takes --preview FILE");
     a.probe = oneProbe(probes, "bake");
-    refuseOverwritingProbe(a.probe, {a.output, a.preview, a.gltf, a.usd});
+    refuseOverwritingProbe(a.probe, {a.output, a.preview, a.gltf, a.usd, a.residual});
+    // The residual without a level: the lamps take what is above 10 x the mean luminance.
+    if (!a.residual.empty() && !a.request.takesSources()) a.request.sources = {kDefaultSourceLevel, 0};
   } else {
-    if (!a.output.empty() || !a.preview.empty() || !a.gltf.empty() || !a.usd.empty())
+    if (!a.output.empty() || !a.preview.empty() || !a.gltf.empty() || !a.usd.empty() || !a.residual.empty())
       throw UsageError(
           "with --out-dir each probe's JSON (and --previews) goes there: drop -o / --preview / --gltf / "
-          "--usd");
+          "--usd / --residual");
     if (probes.empty()) throw UsageError("no probes given: probelights bake PROBE... --out-dir DIR");
     a.probes = probes;
   }
@@ -124,21 +128,33 @@ void printSummary(const BakeArgs& a, const Probe& probe, const EvaluatedBake& ev
   Rgb sum{};
   for (const Light& l : r.lights)
     for (int k = 0; k < 3; ++k) sum[k] += l.rgb[k];
+  // With sources, the lamps and the residual together give back the probe's light.
+  Rgb total = r.totalRgb;
+  if (ev.sources) {
+    total = probe.hasPixels() ? probe.integral() : total;
+    for (int k = 0; k < 3; ++k) sum[k] += ev.sources->residualRgb[k];
+  }
   double worst = 0;
   for (int k = 0; k < 3; ++k)
-    if (r.totalRgb[k] > 0) worst = std::max(worst, std::abs(sum[k] - r.totalRgb[k]) / r.totalRgb[k]);
-  const bool allPositive = r.totalRgb[0] > 0 && r.totalRgb[1] > 0 && r.totalRgb[2] > 0;
-  std::printf(
-      "\nenergy     probe integral (%.6g, %.6g, %.6g), lights sum (%.6g, %.6g, %.6g), max rel. diff %.1e%s\n",
-      r.totalRgb[0], r.totalRgb[1], r.totalRgb[2], sum[0], sum[1], sum[2], worst,
-      allPositive ? "" : " (of the channels above 0; see the note)");
+    if (total[k] > 0) worst = std::max(worst, std::abs(sum[k] - total[k]) / total[k]);
+  const bool allPositive = total[0] > 0 && total[1] > 0 && total[2] > 0;
+  if (ev.sources)
+    std::printf(
+        "\nsources    the lamps take the light above %.4g (%.3g x the mean luminance): %.1f%% of it; the "
+        "residual keeps the rest\n",
+        ev.sources->level, ev.sources->level / ev.sources->meanLuminance, 100 * ev.sources->share);
+  std::printf("%senergy     probe integral (%.6g, %.6g, %.6g), %s (%.6g, %.6g, %.6g), max rel. diff %.1e%s\n",
+              ev.sources ? "" : "\n", total[0], total[1], total[2],
+              ev.sources ? "lamps + residual" : "lights sum", sum[0], sum[1], sum[2], worst,
+              allPositive ? "" : " (of the channels above 0; see the note)");
   if (ev.evaluated) {
     std::printf("error      ");
     if (ev.effects & kDiffuse) std::printf("diffuse %.2f%%  ", 100 * ev.errors.diffuse);
     if (ev.effects & kShadow) std::printf("shadow %.2f%%  ", 100 * ev.errors.shadow);
     if (ev.effects & kGlossy) std::printf("glossy %.2f%%  ", 100 * ev.errors.glossy);
-    std::printf("(relative RMS of luminance vs the probe)%s; sun angles: %s\n",
-                ev.refit ? ", lights refit" : "", toString(ev.sunAngles).c_str());
+    std::printf("(relative RMS of luminance vs the probe%s)%s; sun angles: %s\n",
+                ev.sources ? ", the residual's own light exact" : "", ev.refit ? ", lights refit" : "",
+                toString(ev.sunAngles).c_str());
     if (ev.refit && !ev.autoCount) std::printf("refit      energy shift %+.2f%%\n", 100 * ev.energyShift);
   }
   if (probe.hasPixels())
@@ -196,6 +212,9 @@ int bakeCommand(const std::vector<std::string>& argv) {
   }
   if (!a.preview.empty())
     writeImageWhole(a.preview, [&](const std::string& tmp) { writePreview(probe, done.bake, tmp); });
+  if (!a.residual.empty())
+    writeImageWhole(a.residual,
+                    [&](const std::string& tmp) { writeImage(done.sources->residual->view(), tmp); });
   Rgb dropped{};
   const char* generator = "probelights " PROBELIGHTS_VERSION;
   if (!a.gltf.empty()) writeWhole(a.gltf, gltfDocument(done.bake.lights, a.exportAs, generator, &dropped));

@@ -39,6 +39,9 @@ const char* kUsageOwn =
                                     how the image maps to the sphere (default auto: lat-long for 2:1 images)
   -o, --output FILE                 write the lights as JSON ('-' for standard output)
   --preview FILE                    write a picture of the regions and lights (PNG)
+  --residual FILE                   lamps for the probe's bright sources alone; write what the world keeps
+                                    (the residual) to FILE (.exr): lamps + residual = the probe, exactly
+                                    (--source-level, default 10 x the mean luminance, or --source-share)
   --gltf FILE                       write the lights as glTF 2.0 (KHR_lights_punctual: suns in lux, points in
                                     candela, Y up; docs/export.md)
   --usd FILE                        write the lights as USD (UsdLux, .usda: DistantLights normalized in lux,

@@ -110,6 +110,18 @@ py::dict toDict(const std::string& path, const Probe& probe, const BakeOptions& 
   py::dict d;
   DictWriter writer(d);
   writeBake(writer, {path, probe, options, bake, loadMs});
+  if (bake.sources) {
+    // The residual image itself (H x W x 3 float32, read-only), sharing the bake's memory.
+    const auto image = bake.sources->residual;
+    auto* keep = new std::shared_ptr<const Image>(image);
+    py::capsule owner(keep, [](void* p) { delete static_cast<std::shared_ptr<const Image>*>(p); });
+    const auto f = static_cast<py::ssize_t>(sizeof(float));
+    py::array_t<float> residual(
+        {static_cast<py::ssize_t>(image->height), static_cast<py::ssize_t>(image->width), py::ssize_t{3}},
+        {image->width * 3 * f, 3 * f, f}, image->pixels.get(), owner);
+    residual.attr("flags").attr("writeable") = false;
+    d["sources"].cast<py::dict>()["residual"] = residual;
+  }
   return d;
 }
 

@@ -119,6 +119,20 @@ Rgb Evaluator::lightsGlossy(const std::vector<Light>& lights, const Vec3& r, int
   return sumOver(lights, [&](const Light& l) { return glossyKernel(l, r, exponent); });
 }
 
+EffectErrors Evaluator::truthNorms() const {
+  auto norm = [](std::initializer_list<const std::vector<Rgb>*> sets) {
+    double t = 0;
+    for (const auto* set : sets)
+      for (const Rgb& v : *set) t += luminance(v) * luminance(v);
+    return std::sqrt(t);
+  };
+  EffectErrors n;
+  if (effects_ & kDiffuse) n.diffuse = norm({&diffuse_});
+  if (effects_ & kShadow) n.shadow = norm({&shadow_});
+  if (effects_ & kGlossy) n.glossy = norm({&glossy_[0], &glossy_[1]});
+  return n;
+}
+
 EffectErrors Evaluator::evaluate(const std::vector<Light>& lights) const {
   EffectErrors e;
   auto answer = [&](const std::vector<Vec3>& points, auto&& f) {

@@ -338,6 +338,17 @@ Image readImageBands(const std::string& path, int bandRows,
   return info;
 }
 
+void writeImage(const ImageView& image, const std::string& path) {
+  std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(path);
+  if (!out) throw Error("cannot write image '" + path + "': " + oneLine(OIIO::geterror()));
+  OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeDesc::FLOAT);
+  const bool ok = out->open(path, spec) &&
+                  out->write_image(OIIO::TypeDesc::FLOAT, image.pixels, image.pixelStep() * sizeof(float),
+                                   image.rowStep() * sizeof(float)) &&
+                  out->close();
+  if (!ok) throw Error("cannot write image '" + path + "': " + oneLine(out->geterror()));
+}
+
 Probe loadProbe(const std::string& path, const ProbeOptions& options) {
   return Probe(readImage(path), options.projection, options.nonFinite, path);
 }

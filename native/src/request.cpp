@@ -136,6 +136,30 @@ std::vector<RequestOption> makeOptions() {
           [](R& r, S, S v) { r.accuracy.cuts = parseCutChoice(v); },
           [](const R& r) { return toString(r.accuracy.cuts); }),
       option(
+          "source_level", "X",
+          "the lamps take only the light above X times the probe's mean luminance, the world keeps the rest "
+          "(a residual; e.g. 10; 0: off)",
+          [](R& r, S o, S v) {
+            const double x = parseReal(o, v);
+            if (!(x >= 0))
+              throw Error(o + " takes a multiple of the mean luminance, 0 or above (e.g. 10; 0: off), got '" +
+                          v + "'");
+            r.sources = {x, 0};
+          },
+          [](const R& r) { return real(r.sources.level); }),
+      option(
+          "source_share", "S",
+          "the lamps take this share of the probe's light from its brightest pixels down, the world keeps "
+          "the "
+          "rest (e.g. 60%; 0: off)",
+          [](R& r, S o, S v) {
+            const double x = parseTolerance(o, v);
+            if (!(x >= 0 && x < 1))
+              throw Error(o + " takes a share between 0 and 100% (e.g. 60% or 0.6), got '" + v + "'");
+            r.sources = {0, x};
+          },
+          [](const R& r) { return real(r.sources.share); }),
+      option(
           "nonfinite", "error|zero", "NaN/Inf pixels: refuse the probe or read them as 0",
           [](R& r, S, S v) { r.probe.nonFinite = parseNonFinitePolicy(v); },
           [](const R& r) { return toString(r.probe.nonFinite); }),
@@ -193,17 +217,55 @@ double parseTolerance(const std::string& option, const std::string& text) {
 }
 
 bool readsIntoGridAlone(const BakeRequest& request) {
-  return bakesOnGridAlone(request.bake, request.accuracy) && !request.keepPixels;
+  return bakesOnGridAlone(request.bake, request.accuracy) && !request.keepPixels && !request.takesSources();
 }
+
+namespace {
+
+// Lamps for the probe's sources (sources.h): the split, the bake of the sources alone as a probe of their
+// own, and its errors turned into those of lamps plus residual against the whole probe. The residual's own
+// light is exact (the world renders it), so what is left is the lamps' against the sources': each effect's
+// error against the sources, rms(lamps - X) / rms(X), times rms(X) / rms(L).
+EvaluatedBake bakeSources(const Probe& probe, const BakeRequest& request) {
+  if (request.accuracy.refit)
+    throw Error(
+        "the lamps of the sources carry their regions' light exactly, as the residual needs: leave out the "
+        "refit "
+        "(refit, move_directions)");
+  if (request.accuracy.maxError > 0)
+    throw Error("with source_level or source_share, choose the lamps' count (lights), not max_error");
+  SourceSplit split = splitSources(probe, request.sources);
+  const Probe sources(split.sources->view(), probe.projection().kind(), NonFinitePolicy::Error);
+  EvaluatedBake ev = bakeEvaluated(sources, request.bake, request.accuracy);
+  if (ev.evaluated) {
+    const EvaluatorOptions options{request.accuracy.evaluatorWidth, false, ev.sunProfile};
+    const EffectErrors part = Evaluator(sources, ev.effects, options).truthNorms();
+    const EffectErrors whole = Evaluator(probe, ev.effects, options).truthNorms();
+    auto scale = [](double error, double p, double w) { return w > 0 ? error * p / w : error; };
+    ev.errors.diffuse = scale(ev.errors.diffuse, part.diffuse, whole.diffuse);
+    ev.errors.shadow = scale(ev.errors.shadow, part.shadow, whole.shadow);
+    ev.errors.glossy = scale(ev.errors.glossy, part.glossy, whole.glossy);
+  }
+  split.sources.reset();  // the lamps hold what the sources had
+  ev.sources = std::move(split);
+  return ev;
+}
+
+}  // namespace
 
 EvaluatedBake bakeLoaded(const Probe& probe, const BakeRequest& request, const MomentTable* grid,
                          double tablesMs) {
+  if (request.takesSources()) return bakeSources(probe, request);
   return grid ? bakeOnGrid(probe, *grid, tablesMs, request.bake, request.accuracy.sunAngles)
               : bakeEvaluated(probe, request.bake, request.accuracy);
 }
 
 EvaluatedBake bakeBuffer(ImageView view, ProjectionKind projection, const BakeRequest& request,
                          std::optional<Probe>& probe) {
+  if (request.takesSources()) {
+    probe.emplace(view, projection, request.probe.nonFinite);
+    return bakeSources(*probe, request);
+  }
   return bakeBuffer(view, projection, request.probe.nonFinite, request.bake, request.accuracy, probe);
 }
 

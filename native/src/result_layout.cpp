@@ -92,6 +92,20 @@ void writeBake(ResultWriter& w, const BakeReport& report) {
            {"energy_share", 1, ResultColumn::Kind::Number,
             [&](std::size_t i, double* out) { out[0] = L[i].energyShare; }}});
   w.numbers("total_rgb", r.totalRgb);
+  if (report.bake.sources) {
+    // The lamps took the sources alone (sources.h): total_rgb and the lights are the sources', and the
+    // residual the world keeps gives back the rest of the probe's light.
+    const SourceSplit& split = *report.bake.sources;
+    w.begin("sources");
+    w.number("level", split.level);
+    w.number("mean_luminance", split.meanLuminance);
+    w.number("share", split.share);
+    w.numbers("sources_rgb", split.sourcesRgb);
+    w.numbers("residual_rgb", split.residualRgb);
+    w.end();
+  } else {
+    w.null("sources");
+  }
   w.begin("timings_ms");
   w.number("load", report.loadMs);
   w.number("tables", r.timings.tablesMs);

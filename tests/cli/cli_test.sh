@@ -50,6 +50,9 @@ expect_error "USD dome without USD" "add --usd FILE" bake "$probe" --usd-dome re
 expect_error "bad USD dome" "none or reflections" bake "$probe" --usd "$tmp/x.usda" --usd-dome sky
 expect_error "USD in a library" "drop -o / --preview / --gltf / --usd" bake "$probe" --out-dir "$tmp/lib" --usd "$tmp/x.usda"
 expect_error "USD over the probe" "is the probe itself" bake "$probe" --usd "$probe"
+expect_error "residual with a refit" "leave out the refit" bake "$probe" --residual "$tmp/r.exr" --refit
+expect_error "residual in a library" "--residual" bake "$probe" --out-dir "$tmp/lib" --residual "$tmp/r.exr"
+expect_error "bad source level" "source-level takes a multiple" bake "$probe" --source-level -2
 expect_error "USD dome of a mirror ball" "lat-long dome" bake "$tmp/square.pfm" --projection mirror-ball --usd "$tmp/b.usda" --usd-dome reflections
 
 check() {  # name, command
@@ -76,6 +79,8 @@ check "bake writes glTF lights" \
   "'$bin' bake '$probe' --lights 8 --gltf '$tmp/l.gltf' -q && python3 -c \"import json,sys; d=json.load(open(sys.argv[1])); assert len(d['nodes']) == 8 and d['extensionsUsed'] == ['KHR_lights_punctual']\" '$tmp/l.gltf'"
 check "bake writes USD lights" \
   "'$bin' bake '$probe' --lights 8 --usd '$tmp/l.usda' --light-type point -q && [[ \$(grep -c 'def SphereLight' '$tmp/l.usda') -eq 8 ]] && [[ ! -e '$tmp/b.usda' ]]"
+check "bake writes a residual and says lamps + residual give back the probe" \
+  "'$bin' bake '$probe' --lights 4 --residual '$tmp/res.exr' --source-share 40% >'$tmp/res.txt' && head -c 4 '$tmp/res.exr' | od -An -tx1 | grep -q '76 2f 31 01' && grep -q 'lamps + residual' '$tmp/res.txt' && grep -q '40.0% of it' '$tmp/res.txt' && [[ ! -e '$tmp/r.exr' ]]"
 check "summary shows timings and energy" "grep -q 'time (ms)' '$tmp/summary' && grep -q 'max rel. diff' '$tmp/summary'"
 check "version" "'$bin' --version | grep -q '^probelights [0-9]'"
 check "JSON to stdout" "'$bin' bake '$probe' --lights 2 -o - | python3 -c 'import json,sys; json.load(sys.stdin)'"

@@ -24,7 +24,8 @@ TEST(Request, EveryOptionReadsBackWhatItWasSetTo) {
       {"move_directions", "on"},  {"max_error", "0.02"},
       {"evaluator_width", "512"}, {"sun_angles", "spread"},
       {"sun_profile", "disc"},    {"cuts", "auto"},
-      {"nonfinite", "zero"}};
+      {"nonfinite", "zero"},      {"source_level", "10"},
+      {"source_share", "0.6"}};
   std::set<std::string> named;
   for (const auto& [name, value] : others) {
     const RequestOption& o = requestOption(name);

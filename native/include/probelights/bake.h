@@ -18,6 +18,7 @@
 #include "probelights/evaluate.h"
 #include "probelights/finish_lights.h"
 #include "probelights/placement.h"
+#include "probelights/sources.h"
 #include "probelights/sun_angles.h"
 
 namespace probelights {
@@ -50,6 +51,9 @@ struct EvaluatedBake {
   int count = 0;  // the light count asked for, or chosen when autoCount (bake.lights may hold fewer)
   Method cut = Method::Variance;              // the method the lights were cut with (the one kept)
   std::vector<std::pair<int, double>> tried;  // autoCount: (count, worst error) of every count tried
+  // The lamps took the probe's sources alone (request.h: sources): the residual the world keeps, and the
+  // split's level and share; the errors are then those of the lamps plus the residual against the probe.
+  std::optional<SourceSplit> sources;
 };
 
 // `grid`: the probe's working grid for these options if the caller has built it.

@@ -83,6 +83,10 @@ class Evaluator {
 
   Effects effects() const { return effects_; }
   EffectErrors evaluate(const std::vector<Light>& lights) const;
+  // Per effect, the root of the sum of squares of the truth's luminance over its points (the errors'
+  // denominators): the errors of lamps against a part of the probe, times this part's over the whole
+  // probe's, are their errors against the whole (sources.h).
+  EffectErrors truthNorms() const;
 
   // The sample points and the truth there (exposed for tests and the irradiance refit).
   const std::vector<Vec3>& normals() const { return normals_; }

@@ -33,4 +33,8 @@ Image readImageBands(const std::string& path, int bandRows,
 // file; tiled and deep ones are read whole). Throws Error like readImage.
 Image describeImage(const std::string& path, bool* canReadInBands = nullptr);
 
+// Writes a float image (a residual: sources.h) to `path` in the format its extension names, as 32-bit float
+// where the format has it (OpenEXR, TIFF, PFM; Radiance HDR is RGBE). Throws Error naming the file.
+void writeImage(const ImageView& image, const std::string& path);
+
 }  // namespace probelights

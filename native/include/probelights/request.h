@@ -20,6 +20,11 @@ struct BakeRequest {
   AccuracyOptions accuracy;  // evaluation, refit, tolerance, sun angles, cuts
   // The caller needs the probe's pixels after the bake (a preview): never read into the working grid alone.
   bool keepPixels = false;
+  // Lamps for the probe's sources alone, the rest kept as a residual for the world (sources.h); off when
+  // neither is set. The lamps then carry their regions' light exactly: no refit, and their count is chosen
+  // (not max_error).
+  SourceLevel sources;
+  bool takesSources() const { return sources.level > 0 || sources.share > 0; }
 };
 
 // An option of a request by name: the module's keyword ("max_error") and the CLI's option ("--max-error",

@@ -1,0 +1,170 @@
+// Lamps for the sources, a residual for the world (sources.h): the split is exact per pixel, the lamps plus
+// the residual give back the probe's light per region and channel, two suns stay two lamps, the knobs mean
+// what they say, and a request that would break the residual's exactness is refused.
+#include "probelights/sources.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "probelights/error.h"
+#include "probelights/image_file.h"
+#include "probelights/request.h"
+#include "test_probes.h"
+
+namespace probelights {
+namespace {
+
+using testing::makeProbe;
+
+// A sky of 0.1 (bluish) with two suns on the horizon, opposite each other at +`axis` and -`axis` (X or Y),
+// each a disc of a few pixels: the two sources of issue 30's "two opposite suns stay two lamps" (EEVEE's sun
+// extraction averages them into one between them).
+testing::TestProbe twoSuns(int axis = 0) {
+  const int W = 256, H = 128;
+  return makeProbe(W, H, ProjectionKind::LatLong, [&](int x, int y) -> Rgb {
+    // Pixel centres: phi = 2 pi (0.5 - u), elevation = pi / 2 - pi v.
+    const double phi = 2 * kPi * (0.5 - (x + 0.5) / W), el = kPi / 2 - kPi * (y + 0.5) / H;
+    const Vec3 d{std::cos(el) * std::cos(phi), std::cos(el) * std::sin(phi), std::sin(el)};
+    const double a = axis == 0 ? d.x : d.y;
+    if (std::abs(a) > std::cos(3 * kPi / 180)) return a > 0 ? Rgb{800, 700, 600} : Rgb{300, 400, 500};
+    return {0.08, 0.1, 0.14};
+  });
+}
+
+// Sum of value x solid angle over pixels [x0, x1) x [y0, y1) of an RGB image of the probe's size.
+Rgb regionSum(const Probe& probe, const float* pixels, const Rect& r) {
+  Rgb s{};
+  for (int y = r.y0; y < r.y1; ++y)
+    for (int x = r.x0; x < r.x1; ++x) {
+      const double w = probe.projection().pixelSolidAngle(x, y);
+      for (int c = 0; c < 3; ++c)
+        s[c] += pixels[(static_cast<std::size_t>(y) * probe.width() + x) * 3 + c] * w;
+    }
+  return s;
+}
+
+TEST(Sources, SplitIsExactPerPixelAndKeepsTheResidualUnderTheLevel) {
+  const auto p = twoSuns();
+  const SourceSplit s = splitSources(p.probe, {10, 0});
+  EXPECT_DOUBLE_EQ(s.level, 10 * s.meanLuminance);
+  const float* R = s.residual->pixels.get();
+  const float* X = s.sources->pixels.get();
+  int clipped = 0;
+  for (int y = 0; y < p.probe.height(); ++y)
+    for (int x = 0; x < p.probe.width(); ++x) {
+      const std::size_t i = (static_cast<std::size_t>(y) * p.probe.width() + x) * 3;
+      const Rgb l = p.probe.light(x, y);
+      for (int c = 0; c < 3; ++c) {
+        ASSERT_GE(R[i + c], 0.0f);
+        ASSERT_EQ(static_cast<double>(R[i + c]) + static_cast<double>(X[i + c]), l[c]) << x << "," << y;
+      }
+      const double Y = luminance(R[i], R[i + 1], R[i + 2]);
+      ASSERT_LE(Y, s.level * (1 + 1e-6));
+      clipped += X[i] > 0;
+    }
+  EXPECT_GT(clipped, 20);  // the two suns' pixels
+  const Rgb total = p.probe.integral();
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(s.residualRgb[c] + s.sourcesRgb[c], total[c], 1e-12 * total[c]);
+  EXPECT_GT(s.share, 0.5);
+}
+
+TEST(Sources, TwoOppositeSunsStayTwoLampsAndEachRegionGivesBackTheProbe) {
+  // At +Y and -Y (a quarter of the way in from each edge of the lat-long image), two lamps, one each.
+  const auto p = twoSuns(1);
+  BakeRequest request;
+  request.bake.lights = 2;
+  request.sources = {10, 0};
+  const EvaluatedBake ev = bakeLoaded(p.probe, request);
+  ASSERT_TRUE(ev.sources);
+  ASSERT_EQ(ev.bake.lights.size(), 2u);
+  bool north = false, south = false;
+  for (const Light& l : ev.bake.lights) {
+    north |= l.direction.y > 0.99;
+    south |= l.direction.y < -0.99;
+  }
+  EXPECT_TRUE(north && south) << ev.bake.lights[0].direction.y << " " << ev.bake.lights[1].direction.y;
+  // Per region and channel: the residual's sum plus the lamp is the probe's sum.
+  const float* R = ev.sources->residual->pixels.get();
+  for (const Light& l : ev.bake.lights) {
+    const Rgb r = regionSum(p.probe, R, l.rect);
+    const Rgb whole = regionSum(p.probe, p.pixels->data(), l.rect);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(r[c] + l.rgb[c], whole[c], 1e-9 * whole[c]) << c;
+  }
+}
+
+// A sun on the lat-long image's seam (-X: phi = pi) is cut in two by the image's edges, and a region of the
+// rectangles that the cuts make cannot wrap round: with two lamps each would hold half of it with half of the
+// other sun (and shine from the brighter one). With three, every lamp is at one of the suns, none between.
+TEST(Sources, ASunOnTheSeamTakesALampEachSide) {
+  const auto p = twoSuns(0);
+  BakeRequest request;
+  request.bake.lights = 3;
+  request.sources = {10, 0};
+  const EvaluatedBake ev = bakeLoaded(p.probe, request);
+  ASSERT_EQ(ev.bake.lights.size(), 3u);
+  for (const Light& l : ev.bake.lights) EXPECT_GT(std::abs(l.direction.x), 0.99) << l.direction.x;
+}
+
+TEST(Sources, AShareFindsItsLevel) {
+  const auto p = twoSuns();
+  for (double share : {0.05, 0.3, 0.9}) {
+    const SourceSplit s = splitSources(p.probe, {0, share});
+    EXPECT_NEAR(s.share, share, 1e-9) << share;
+  }
+}
+
+TEST(Sources, NegativeChannelsGoToTheLamps) {
+  const auto p = makeProbe(16, 8, ProjectionKind::LatLong, [](int x, int y) -> Rgb {
+    return x == 3 && y == 2 ? Rgb{-0.5, 0.2, 0.1} : Rgb{0.1, 0.1, 0.1};
+  });
+  const SourceSplit s = splitSources(p.probe, {10, 0});
+  const std::size_t i = (2 * 16 + 3) * 3;
+  EXPECT_EQ(s.residual->pixels.get()[i], 0.0f);
+  EXPECT_EQ(s.sources->pixels.get()[i], -0.5f);
+}
+
+TEST(Sources, BadKnobsAndRequestsThatWouldBreakTheResidualAreRefused) {
+  const auto p = twoSuns();
+  EXPECT_THROW(splitSources(p.probe, {0, 0}), Error);
+  EXPECT_THROW(splitSources(p.probe, {10, 0.5}), Error);
+  EXPECT_THROW(splitSources(p.probe, {0, 1}), Error);
+  BakeRequest request;
+  request.sources = {10, 0};
+  request.accuracy.refit = true;
+  EXPECT_THROW(bakeLoaded(p.probe, request), Error);
+  request.accuracy.refit = false;
+  request.accuracy.maxError = 0.01;
+  EXPECT_THROW(bakeLoaded(p.probe, request), Error);
+  EXPECT_THROW(requestOption("source_level").set(request, "source_level", "-1"), Error);
+  EXPECT_THROW(requestOption("source_share").set(request, "source_share", "100%"), Error);
+}
+
+// The bundled probe: its evaluation is of lamps plus residual, far below the lamps' error against the
+// sources alone, and the residual written and read back is the residual.
+TEST(Sources, BundledProbeEvaluatesLampsPlusResidualAndWritesTheResidual) {
+  const Probe probe = loadProbe(PROBELIGHTS_BUNDLED_PROBE);
+  BakeRequest request;
+  request.bake.lights = 4;
+  request.sources = {10, 0};
+  request.accuracy.evaluate = true;
+  request.accuracy.effects = kDiffuse | kShadow;
+  const EvaluatedBake ev = bakeLoaded(probe, request);
+  ASSERT_TRUE(ev.evaluated && ev.sources);
+  EXPECT_LT(ev.errors.diffuse, 0.01);
+  EXPECT_LT(ev.errors.shadow, 0.02);
+  Rgb sum = ev.sources->residualRgb;
+  for (const Light& l : ev.bake.lights)
+    for (int c = 0; c < 3; ++c) sum[c] += l.rgb[c];
+  const Rgb total = probe.integral();
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(sum[c], total[c], 1e-9 * total[c]);
+  const std::string path = ::testing::TempDir() + "residual.exr";
+  writeImage(ev.sources->residual->view(), path);
+  const Image back = readImage(path);
+  ASSERT_EQ(back.width, probe.width());
+  const std::size_t n = static_cast<std::size_t>(back.width) * back.height * 3;
+  for (std::size_t i = 0; i < n; ++i) ASSERT_EQ(back.pixels.get()[i], ev.sources->residual->pixels.get()[i]);
+}
+
+}  // namespace
+}  // namespace probelights
