@@ -13,7 +13,7 @@ namespace probelights::cli {
 struct BakeArgs {
   std::string probe, output, preview, gltf, usd, residual;  // one probe
   ExportOptions exportAs;                                   // how --gltf and --usd write the lights
-  bool usdReflections = false;                              // --usd-dome reflections
+  std::string usdDome = "none";                             // --usd-dome none|reflections|residual
   std::vector<std::string> probes;                          // a library: files, directories, globs
   std::string outDir;
   bool previews = false;

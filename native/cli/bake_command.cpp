@@ -62,9 +62,9 @@ BakeArgs parseBakeArgs(const std::vector<std::string>& argv) {
   table.push_back({{"--residual"}, [&](const std::string& v) { a.residual = nonEmpty("--residual", v); }});
   bool usdDome = false;
   table.push_back({{"--usd-dome"}, [&](const std::string& v) {
-                     if (v != "none" && v != "reflections")
-                       throw UsageError("--usd-dome takes none or reflections, got '" + v + "'");
-                     a.usdReflections = v == "reflections";
+                     if (v != "none" && v != "reflections" && v != "residual")
+                       throw UsageError("--usd-dome takes none, reflections or residual, got '" + v + "'");
+                     a.usdDome = v;
                      usdDome = true;
                    }});
   bool lightType = false, distance = false;
@@ -85,6 +85,8 @@ BakeArgs parseBakeArgs(const std::vector<std::string>& argv) {
         "--light-type and --distance say how --gltf and --usd write the lights: add --gltf FILE or --usd "
         "FILE");
   if (usdDome && a.usd.empty()) throw UsageError("--usd-dome says what --usd writes: add --usd FILE");
+  if (a.usdDome == "residual" && a.residual.empty())
+    throw UsageError("--usd-dome residual shows the residual that --residual FILE writes: add it");
   if (distance && a.exportAs.kind != ExportKind::Point)
     throw UsageError("--distance places point lights: add --light-type point");
   if (maxError && a.request.accuracy.maxError == 0)
@@ -203,8 +205,8 @@ int bakeCommand(const std::vector<std::string>& argv) {
   const BakedFile baked = bakeFile(a.probe, a.request);
   const Probe& probe = *baked.probe;
   const EvaluatedBake& done = *baked.result;
-  if (a.usdReflections && probe.projection().kind() != ProjectionKind::LatLong)
-    throw Error("--usd-dome reflections shows the probe as a lat-long dome; '" + a.probe + "' is " +
+  if (a.usdDome != "none" && probe.projection().kind() != ProjectionKind::LatLong)
+    throw Error("--usd-dome " + a.usdDome + " shows a lat-long dome; '" + a.probe + "' is " +
                 toString(probe.projection().kind()) + ": convert it to lat-long first, or drop --usd-dome");
   if (!a.output.empty()) {
     writeJson(bakeToJson({a.probe, probe, a.request.bake, done, baked.loadMs}), a.output, 2);
@@ -220,7 +222,11 @@ int bakeCommand(const std::vector<std::string>& argv) {
   if (!a.gltf.empty()) writeWhole(a.gltf, gltfDocument(done.bake.lights, a.exportAs, generator, &dropped));
   if (!a.usd.empty()) {
     ExportOptions usd = a.exportAs;
-    if (a.usdReflections) usd.reflectionsDome = assetPathFrom(a.usd, a.probe);
+    if (a.usdDome != "none") {
+      const bool residual = a.usdDome == "residual";
+      usd.dome = assetPathFrom(a.usd, residual ? a.residual : a.probe);
+      usd.domeTakes = residual ? ExportOptions::Dome::Residual : ExportOptions::Dome::Reflections;
+    }
     writeWhole(a.usd, usdDocument(done.bake.lights, usd, generator, &dropped));
   }
   if (!a.quiet) {

@@ -46,8 +46,10 @@ const char* kUsageOwn =
                                     candela, Y up; docs/export.md)
   --usd FILE                        write the lights as USD (UsdLux, .usda: DistantLights normalized in lux,
                                     or SphereLights; Z up, metres; docs/export.md)
-  --usd-dome none|reflections       reflections: with a DomeLight of the probe for reflections alone, the
-                                    lamps for diffuse light alone (as the add-on splits them; default none)
+  --usd-dome none|reflections|residual
+                                    a DomeLight: reflections, the probe for reflections alone with the lamps
+                                    for diffuse light alone (as the add-on splits them); residual, what
+                                    --residual FILE keeps, with the lamps of the sources (default none)
   --light-type sun|point            what --gltf and --usd write (default sun)
   --distance M                      --light-type point: metres from the origin (default 10)
   --out-dir DIR                     bake many probes (files, folders, quoted globs) into DIR: a JSON each and

@@ -310,9 +310,12 @@ std::string gltfText(const py::dict& lights, const std::string& lightType, doubl
 }
 
 std::string usdText(const py::dict& lights, const std::string& lightType, double distance,
-                    const std::string& reflections) {
+                    const std::string& reflections, const std::string& residual) {
   ExportOptions options = exportOptions(lightType, distance);
-  options.reflectionsDome = reflections;
+  if (!reflections.empty() && !residual.empty())
+    throw Error("usd takes one dome: reflections (the probe) or residual, not both");
+  options.dome = residual.empty() ? reflections : residual;
+  options.domeTakes = residual.empty() ? ExportOptions::Dome::Reflections : ExportOptions::Dome::Residual;
   return usdDocument(exportedLights(lights), options, "probelights " PROBELIGHTS_VERSION);
 }
 
@@ -473,11 +476,13 @@ PYBIND11_MODULE(_probelights, m) {
       "point lights `distance` metres out in candela, at 683 lm/W as Blender's glTF importer reads them.");
   m.def(
       "usd", &usdText, py::arg("lights"), py::kw_only(), py::arg("light_type") = "sun",
-      py::arg("distance") = 10.0, py::arg("reflections") = "",
+      py::arg("distance") = 10.0, py::arg("reflections") = "", py::arg("residual") = "",
       "USD text (usda, UsdLux, Z up, metres) of a bake's lights: DistantLights normalized, intensity in lux "
       "(the probe's values read as nits), or SphereLights `distance` metres out. reflections: an asset path "
       "(relative to where the file will be, './' or '../' first, or absolute) of the lat-long probe, shown "
-      "by a DomeLight for reflections alone while the lights take diffuse light alone (docs/export.md).");
+      "by a DomeLight for reflections alone while the lights take diffuse light alone; or residual: the path "
+      "of a residual image saved from a bake with sources, shown by a DomeLight that lights with the lamps "
+      "(docs/export.md).");
   m.def(
       "release_memory", [] { releaseKeptBuffers(); },
       "Give back the table buffers kept for the next bake (memory.h: up to two, e.g. 84 MB each for 2K "

@@ -149,7 +149,8 @@ std::string gltfDocument(const std::vector<Light>& lights, const ExportOptions& 
 std::string usdDocument(const std::vector<Light>& lights, const ExportOptions& options,
                         const std::string& generator, Rgb* clampedRgb) {
   const std::vector<Written> all = written(lights, options.kind, clampedRgb);
-  const bool sun = options.kind == ExportKind::Sun, dome = !options.reflectionsDome.empty();
+  const bool sun = options.kind == ExportKind::Sun, dome = !options.dome.empty();
+  const bool split = dome && options.domeTakes == ExportOptions::Dome::Reflections;
   auto tuple = [](std::initializer_list<double> vs) { return numbers(vs, '(', ')'); };
   // The Sun's angular diameter, the smallest a point light is drawn at (radians).
   constexpr double kSunDiameter = 0.53 * kPi / 180;
@@ -164,14 +165,14 @@ std::string usdDocument(const std::vector<Light>& lights, const ExportOptions& o
            "\"\n    {\n";
     if (sun) out += "        float inputs:angle = " + number(angle * 180 / kPi) + "\n";
     out += "        color3f inputs:color = " + tuple({c[0], c[1], c[2]}) + "\n";
-    if (dome) out += "        float inputs:diffuse = 1\n";
+    if (split) out += "        float inputs:diffuse = 1\n";
     const double d = options.distance;
     out += "        float inputs:intensity = " + number(sun ? w.peak : 4 * w.peak * d * d) + "\n";
     out += "        bool inputs:normalize = 1\n";
     if (!sun)
       out +=
           "        float inputs:radius = " + number(d * std::sin(std::max(angle, kSunDiameter) / 2)) + "\n";
-    if (dome) out += "        float inputs:specular = 0\n";
+    if (split) out += "        float inputs:specular = 0\n";
     out += "        custom double probelights:solidAngle = " + number(l.solidAngle) + "\n";
     if (sun) {
       const auto q = turnZTo(w.direction);  // (x, y, z, w); USD's quaternions are written (w, x, y, z)
@@ -188,13 +189,11 @@ std::string usdDocument(const std::vector<Light>& lights, const ExportOptions& o
     // UsdLux's DomeLight keeps its pole on +Y with the image's centre on +Z (OpenEXR's lat-long), whatever
     // the stage's up axis; Blender's lat-long has its pole on +Z and its centre on +X. The turn of 120
     // degrees about (1, 1, 1) takes +X to +Y, +Y to +Z and +Z to +X: the quaternion (0.5, 0.5, 0.5, 0.5).
-    out += std::string(all.empty() ? "" : "\n") +
-           "    def DomeLight \"reflections\"\n    {\n"
-           "        float inputs:diffuse = 0\n"
-           "        float inputs:intensity = 1\n"
-           "        float inputs:specular = 1\n"
-           "        asset inputs:texture:file = " +
-           assetPath(options.reflectionsDome) +
+    out += std::string(all.empty() ? "" : "\n") + "    def DomeLight \"" +
+           (split ? "reflections" : "residual") + "\"\n    {\n" +
+           (split ? "        float inputs:diffuse = 0\n" : "") + "        float inputs:intensity = 1\n" +
+           (split ? "        float inputs:specular = 1\n" : "") +
+           "        asset inputs:texture:file = " + assetPath(options.dome) +
            "\n"
            "        token inputs:texture:format = \"latlong\"\n"
            "        quatf xformOp:orient = (0.5, 0.5, 0.5, 0.5)\n"

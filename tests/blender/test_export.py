@@ -199,10 +199,41 @@ def test_usd_suns_render_as_the_world_and_the_addons_bake():
     assert to_world < BOUND and to_addon < BOUND, (to_world, to_addon)
 
 
+def test_usd_lamps_of_the_sources_and_the_residual_dome_render_as_the_world():
+    """Issue 30's residual in another renderer's terms, read back by Blender's USD importer: the lamps of the
+    probe's sources plus a DomeLight of the residual light the scene as the world alone does (Cycles)."""
+    if not has_usd():
+        return
+    harness.empty_scene()
+    harness.env_world(bpy.data.images.load(harness.BUNDLED_PROBE))
+    render_scene.sphere_over_plane(WIDTH, HEIGHT, SAMPLES)
+    world_lit = render_scene.render()
+    with tempfile.TemporaryDirectory() as folder:
+        usd, residual = os.path.join(folder, "lights.usda"), os.path.join(folder, "residual.exr")
+        subprocess.run([CLI, "bake", harness.BUNDLED_PROBE, "--lights", "16", "--effects", "diffuse,shadow",
+                        "--evaluate", "--residual", residual, "--usd", usd, "--usd-dome", "residual", "-q"],
+                       check=True)
+        # The importer puts a DomeLight into the scene's world (Create World Material), which must exist. Its
+        # Light Intensity Scale would dim the dome with the suns: the suns alone are taken back to 1/4 here.
+        bpy.context.scene.world = bpy.data.worlds.new("for the dome")
+        suns = imported(usd)
+        for sun in suns:
+            sun.data.energy /= USD_SUN_STRENGTH
+        images = [n.image for n in bpy.context.scene.world.node_tree.nodes if n.type == "TEX_ENVIRONMENT"]
+        assert len(images) == 1 and os.path.samefile(bpy.path.abspath(images[0].filepath), residual), images
+        images[0].pack()  # the folder goes away before the render
+        both_lit = render_scene.render()
+    difference, blocks = render_scene.block_difference(world_lit, both_lit)
+    print("  %d lamps of the sources + the residual dome from USD against the world: %.2f %% (%d lit 8x8 blocks, "
+          "%d spp)" % (len(suns), 100 * difference, blocks, SAMPLES), flush=True)
+    assert difference < BOUND, difference
+
+
 if __name__ == "__main__":
     harness.run([test_gltf_suns_come_back_through_blenders_importer,
                  test_gltf_points_come_back_through_blenders_importer,
                  test_gltf_suns_render_as_the_world_and_the_addons_bake,
                  test_usd_suns_come_back_through_blenders_importer,
                  test_usd_points_come_back_through_blenders_importer,
-                 test_usd_suns_render_as_the_world_and_the_addons_bake])
+                 test_usd_suns_render_as_the_world_and_the_addons_bake,
+                 test_usd_lamps_of_the_sources_and_the_residual_dome_render_as_the_world])

@@ -47,7 +47,8 @@ expect_error "zero distance" "above 0" bake "$probe" --gltf "$tmp/x.gltf" --ligh
 expect_error "glTF in a library" "drop -o / --preview / --gltf" bake "$probe" --out-dir "$tmp/lib" --gltf "$tmp/x.gltf"
 expect_error "glTF over the probe" "is the probe itself" bake "$probe" --gltf "$probe"
 expect_error "USD dome without USD" "add --usd FILE" bake "$probe" --usd-dome reflections
-expect_error "bad USD dome" "none or reflections" bake "$probe" --usd "$tmp/x.usda" --usd-dome sky
+expect_error "residual dome without a residual" "add it" bake "$probe" --usd "$tmp/x.usda" --usd-dome residual
+expect_error "bad USD dome" "none, reflections or residual" bake "$probe" --usd "$tmp/x.usda" --usd-dome sky
 expect_error "USD in a library" "drop -o / --preview / --gltf / --usd" bake "$probe" --out-dir "$tmp/lib" --usd "$tmp/x.usda"
 expect_error "USD over the probe" "is the probe itself" bake "$probe" --usd "$probe"
 expect_error "residual with a refit" "leave out the refit" bake "$probe" --residual "$tmp/r.exr" --refit

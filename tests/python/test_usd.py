@@ -4,6 +4,7 @@ the stage opens and passes OpenUSD's validators, every light's direction, positi
 and angle read back through UsdLux and UsdGeom's transforms are the bake's, and the reflections dome shows each
 pixel of the probe in the direction the probe's own convention gives it."""
 
+import json
 import math
 import os
 import subprocess
@@ -144,12 +145,40 @@ def test_reflections_dome_shows_the_probe_where_the_probe_puts_it(bundled_probe,
     assert r["lights"]["rgb"].shape == (16, 3)
 
 
+def test_residual_dome_with_the_lamps_of_the_sources(bundled_probe, tmp_path):
+    # The lamps of the sources and a dome of the residual: their light together is the probe's, read back
+    # from the USD (intensity x colour, float attributes) and the residual's sums (the bake's JSON).
+    out, residual, lights = tmp_path / "lights.usda", tmp_path / "residual.exr", tmp_path / "lights.json"
+    subprocess.run([CLI, "bake", bundled_probe, "--lights", "8", "--residual", str(residual), "--usd", str(out),
+                    "--usd-dome", "residual", "-o", str(lights), "-q"], check=True)
+    stage = Usd.Stage.Open(str(out))
+    assert compliant(str(out)) == []
+    found = lights_of(stage)
+    domes = [p for p in found if p.IsA(UsdLux.DomeLight)]
+    assert len(domes) == 1 and len(found) == 9
+    dome = UsdLux.DomeLight(domes[0])
+    assert dome.GetTextureFileAttr().Get().path == "./residual.exr"
+    assert os.path.samefile(dome.GetTextureFileAttr().Get().resolvedPath, residual)
+    # No split: every light lights everything (no diffuse or specular multipliers authored).
+    for p in found:
+        assert not UsdLux.LightAPI(p).GetDiffuseAttr().HasAuthoredValue()
+        assert not UsdLux.LightAPI(p).GetSpecularAttr().HasAuthoredValue()
+    lamps = sum(UsdLux.LightAPI(p).GetIntensityAttr().Get() * np.array(UsdLux.LightAPI(p).GetColorAttr().Get())
+                for p in found if p != domes[0])
+    with open(lights) as f:
+        baked = json.load(f)
+    whole = pl.bake_file(bundled_probe, lights=8)["total_rgb"]
+    assert lamps + np.array(baked["sources"]["residual_rgb"]) == pytest.approx(whole, rel=1e-6)
+
+
 def test_usd_bad_requests(bundled_probe, tmp_path):
     r = pl.bake(np.ones((8, 16, 3), np.float32), lights=2)
     with pytest.raises(pl.Error, match="light_type takes sun or point"):
         pl.usd(r["lights"], light_type="spot")
     with pytest.raises(pl.Error, match="cannot name"):
         pl.usd(r["lights"], reflections="a@@@b.hdr")
+    with pytest.raises(pl.Error, match="one dome"):
+        pl.usd(r["lights"], reflections="./a.hdr", residual="./r.exr")
     # An @ in a path is written in usda's other form, and read back whole.
     path, stage = stage_of(pl.usd(r["lights"], reflections="./sky@noon.hdr"), str(tmp_path))
     dome = [p for p in lights_of(stage) if p.IsA(UsdLux.DomeLight)][0]

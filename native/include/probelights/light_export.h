@@ -14,10 +14,12 @@ struct ExportOptions {
   ExportKind kind = ExportKind::Sun;
   double distance = 10;  // metres from the origin, point lights (a sun's position does not light anything)
   // USD only: a DomeLight showing this lat-long image (an asset path as it is to be written: relative to the
-  // .usda's folder, "./" or "../" first, or absolute) for reflections alone, the lamps then lighting diffuse
-  // surfaces alone (UsdLux's diffuse and specular multipliers): the add-on's default split, where the world
-  // keeps the reflections. Empty: no dome, the lamps take all of the light.
-  std::string reflectionsDome;
+  // .usda's folder, "./" or "../" first, or absolute); empty: no dome, the lamps take all of the light.
+  //   reflections  the probe itself, for reflections alone, the lamps then lighting diffuse surfaces alone
+  //                (UsdLux's diffuse and specular multipliers): the add-on's default split;
+  //   residual     what the lamps of the sources leave (sources.h), lighting everything with them.
+  std::string dome;
+  enum class Dome { Reflections, Residual } domeTakes = Dome::Reflections;
 };
 
 // The words of the CLI's --light-type and the module's light_type= ("sun", "point"), and the distances both
