@@ -19,7 +19,7 @@ from .light_objects import baked_worlds, make_lights, remove_collection_if_empty
 from .properties import NATIVE_SUN_ANGLES, cut_method, cuts
 from .world_graph import find_probe
 from .world_image import image_pixels, render_world
-from .world_mix import insert_mix, remove_mix
+from .world_mix import insert_mix, remove_mix, residual_world
 
 RENDER_WIDTH = 1024  # lat-long width a world without a readable image is rendered at
 IMAGE_KEY = "probe_lights_image"  # on a baked world: the image it was baked from (a re-bake is suggested if it changes)
@@ -81,11 +81,19 @@ def bake_world(context, settings, progress=lambda fraction: None, rendered=None,
     kind = light_kinds.kind(settings.light_type)
     # The errors are estimated on the probe grouped to 512 pixels wide: the same small cost at any probe size.
     max_error = settings.max_error / 100.0 if settings.count_mode == "TOLERANCE" else 0.0
+    sources = settings.lamps_take == "SOURCES"
+    # With the bright sources, the lamps carry them exactly, as the residual world needs: no refit (the panel
+    # greys it out), and the count is chosen.
+    if sources and max_error > 0:
+        warnings.append("The bright sources: %d lamps made (Max error chooses the count for all of the light)"
+                        % settings.count)
+        max_error = 0.0
     # The refit takes at most native.max_refit_lights() lights unless a tolerance picks the count (it stops there).
-    refit = settings.refit and (max_error > 0 or settings.count <= native.max_refit_lights())
-    if settings.refit and not refit:
+    refit = settings.refit and not sources and (max_error > 0 or settings.count <= native.max_refit_lights())
+    if settings.refit and not refit and not sources:
         warnings.append("Refit takes at most %d lights: %d lights baked without it" % (native.max_refit_lights(),
                                                                                       settings.count))
+    extra = {"source_level": settings.source_level} if sources else {}
     try:
         # With the refit, lights start at their regions' energy^2 centroids (towards the brightest light): with
         # directions and colours refit, shadows came out closer on every probe tried (docs/shadows.md).
@@ -96,7 +104,7 @@ def bake_world(context, settings, progress=lambda fraction: None, rendered=None,
                             max_error=max_error, nonfinite=settings.non_finite,
                             sun_angles=NATIVE_SUN_ANGLES[settings.shadows] if kind.soft else "points",
                             sun_profile=sun_profile(bpy.app.version),
-                            cuts=cuts(settings.method, max_error > 0))
+                            cuts=cuts(settings.method, max_error > 0), **extra)
     except ProbeError as e:
         message = str(e)
         if "; to read them as 0" in message:  # the module names the CLI's option; here it is the panel's
@@ -106,8 +114,10 @@ def bake_world(context, settings, progress=lambda fraction: None, rendered=None,
     progress(0.8)
     lights = make_lights(scene, world, baked, source, settings.light_type, settings.distance,
                          lights_diffuse=settings.replace_diffuse, lights_glossy=settings.replace_reflections)
+    residual = residual_world(world, baked["sources"]["residual"], source) if sources else None
     insert_mix(world, keep_background=not settings.replace_background,
-               keep_reflections=not settings.replace_reflections, keep_diffuse=not settings.replace_diffuse)
+               keep_reflections=not settings.replace_reflections, keep_diffuse=not settings.replace_diffuse,
+               residual=residual)
     if source.image is not None:
         world[IMAGE_KEY] = source.image.name
     elif IMAGE_KEY in world:
@@ -119,6 +129,8 @@ def bake_world(context, settings, progress=lambda fraction: None, rendered=None,
              if not _native_warning(n)]
     total = float(np.dot(baked["total_rgb"], LUM))
     captured = float(np.sum(baked["lights"]["rgb"] @ LUM))
+    if sources:  # "% of the energy": the lamps' share of the world's light (the residual keeps the rest)
+        total += float(np.dot(baked["sources"]["residual_rgb"], LUM))
     warnings += [n for n in baked["notes"] if _native_warning(n)]
     offer = cycles_settings.advice(scene, len(lights))
     if offer:

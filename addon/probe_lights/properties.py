@@ -25,6 +25,10 @@ RESOLUTIONS = [("auto", "Auto", "Cuts on a grid at most 2048 pixels wide (exact 
 COUNT_MODES = [("COUNT", "Count", "Make this many lights"),
                ("TOLERANCE", "Max error", "Make the fewest lights whose estimated diffuse and shadow error is within the "
                                           "tolerance")]
+LAMPS_TAKE = [("ALL", "All of the light", "The lamps light the scene in place of the world (for the effects below)"),
+              ("SOURCES", "The bright sources", "The lamps take only the world's bright sources (the sun, lamps in "
+                                                "it) and cast their shadows; the world keeps the rest of its light, "
+                                                "nothing counted twice")]
 NON_FINITE = [("error", "Stop", "Stop with an error naming how many NaN/Inf samples the image has"),
               ("zero", "Zero", "Read NaN/Inf samples as 0 (black) and say how many")]
 
@@ -47,6 +51,10 @@ def bake_settings():
                                             description="Lights give reflections; the world no longer does"),
         "replace_background": BoolProperty(name="Background", default=False,
                                            description="Hide the world from the camera"),
+        "lamps_take": EnumProperty(name="Lamps take", items=LAMPS_TAKE, default="ALL"),
+        "source_level": FloatProperty(name="Sources above", default=10.0, min=1.0, soft_max=1000.0, max=1.0e6,
+                                      description="A pixel brighter than this many times the world's mean "
+                                                  "brightness is a source's; the world keeps up to that of it"),
         "count_mode": EnumProperty(name="Count by", items=COUNT_MODES, default="COUNT"),
         "max_error": FloatProperty(name="Max error", default=2.0, min=0.05, max=50.0, subtype="PERCENTAGE",
                                    description="Largest estimated diffuse/shadow error (relative RMS) to accept"),

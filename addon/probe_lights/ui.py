@@ -55,7 +55,9 @@ def draw_panel(layout, context):
     col = layout.column(align=True)
     col.row(align=True).prop(settings, "light_type", expand=True)
     col.prop(settings, light_kinds.kind(settings.light_type).setting)
-    col.prop(settings, "refit")
+    sub = col.row()
+    sub.enabled = settings.lamps_take == "ALL"  # lamps of the sources carry them exactly: no refit
+    sub.prop(settings, "refit")
     if settings.method != "sh":  # the SH method does not cut on a working grid
         row = col.row(align=True)
         row.label(text="Grid")
@@ -65,6 +67,9 @@ def draw_panel(layout, context):
     row.prop(settings, "non_finite", expand=True)
 
     box = layout.box()
+    box.prop(settings, "lamps_take", text="")
+    if settings.lamps_take == "SOURCES":
+        box.prop(settings, "source_level")
     box.label(text="Lamps replace the world's:")
     c = box.column(align=True)
     c.prop(settings, "replace_diffuse")

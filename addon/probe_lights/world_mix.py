@@ -6,6 +6,11 @@ user keeps from it (camera background, reflections, diffuse), and a restore that
     [Background, strength 0] ----------------- Shader (fac 0)
     Light Path: Is Camera / Is Glossy / Is Diffuse Ray -> (Maximum) -> Fac
 
+When the lamps take only the bright sources (Lamps take: The bright sources), the rays that would see nothing
+see the residual instead: a Background of the residual image (what the core's split leaves of the probe, packed
+in the .blend), looked up along the same directions as the probe at its strength, so that lamps and residual
+together are the world's light, once.
+
 Every node it adds carries the custom property "probe_lights"; the mix also carries world_graph.MIX_TAG. Nothing
 else in the tree is touched, so removing the tagged nodes and linking the original surface back restores it.
 EEVEE lights diffuse and reflections from one world probe, so it cannot keep only the world's reflections. EEVEE
@@ -15,13 +20,65 @@ tests/blender/test_eevee.py). So when the world keeps reflections but not diffus
 (target EEVEE) that shows the world to the camera only: in EEVEE the lamps then light everything, once.
 """
 
-import bpy
+from dataclasses import dataclass
 
-from .world_graph import MIX_TAG, uses_nodes
+import bpy
+import numpy as np
+
+from .world_graph import MIX_TAG, transpose, uses_nodes
 
 NODE_TAG = "probe_lights"
 ENABLED_NODES_TAG = "probe_lights_enabled_nodes"
 EEVEE_OUTPUT_TAG = "probe_lights_eevee_output"
+
+
+@dataclass
+class Residual:
+    image: object            # the residual as a packed float image
+    projection: str          # the Environment Texture's: "EQUIRECTANGULAR" | "MIRROR_BALL"
+    lookup: list             # 3x3: world direction -> the image's direction (the probe's chain)
+    strength: float          # the probe's Background strength
+
+
+def residual_world(world, residual, source):
+    """The residual (H x W x 3 float32, rows top to bottom, in the probe image's frame) as a packed float image,
+    with how the world reads the probe (world_graph.ProbeSource `source`). Replaces an earlier one of ours."""
+    name = "Probe Lights residual (%s)" % world.name
+    old = bpy.data.images.get(name)
+    if old is not None and old.get(NODE_TAG):
+        bpy.data.images.remove(old)
+    h, w = residual.shape[:2]
+    image = bpy.data.images.new(name, w, h, alpha=True, float_buffer=True)
+    image[NODE_TAG] = 1
+    rgba = np.ones((h, w, 4), np.float32)  # alpha 1: the EXR it is packed as keeps the values exactly
+    rgba[..., :3] = residual[::-1]  # Blender stores the bottom row first
+    image.pixels.foreach_set(rgba.ravel())
+    image.file_format = "OPEN_EXR"
+    image.pack()
+    projection = "MIRROR_BALL" if source.projection == "mirror-ball" else "EQUIRECTANGULAR"
+    return Residual(image, projection, transpose(source.world_from_probe), source.strength)
+
+
+def _residual_background(tree, residual, add, dy):
+    """Background <- Environment Texture (the residual) <- Mapping (the probe's turn) <- Texture Coordinate."""
+    bg = add("ShaderNodeBackground", -220, dy)
+    env = add("ShaderNodeTexEnvironment", -440, dy)
+    env.image = residual.image
+    env.projection = residual.projection
+    tree.links.new(env.outputs["Color"], bg.inputs["Color"])
+    identity = all(abs(residual.lookup[i][j] - (i == j)) < 1e-12 for i in range(3) for j in range(3))
+    if not identity:
+        from mathutils import Matrix
+        mapping = add("ShaderNodeMapping", -660, dy)
+        mapping.vector_type = "POINT"
+        mapping.inputs["Rotation"].default_value = Matrix(residual.lookup).to_euler("XYZ")
+        coords = add("ShaderNodeTexCoord", -880, dy)
+        tree.links.new(coords.outputs["Generated"], mapping.inputs["Vector"])
+        tree.links.new(mapping.outputs["Vector"], env.inputs["Vector"])
+    # The probe's strength now (a driver on the world's own tree, reading it, would be a dependency cycle): the
+    # panel asks for a bake again when it changes.
+    bg.inputs["Strength"].default_value = residual.strength
+    return bg
 
 
 def _tagged(tree):
@@ -39,8 +96,9 @@ def _active_output(tree):
     return active[0] if active else None
 
 
-def insert_mix(world, keep_background=True, keep_reflections=True, keep_diffuse=False):
-    """Routes the world's surface through the mix; replaces an earlier mix of ours."""
+def insert_mix(world, keep_background=True, keep_reflections=True, keep_diffuse=False, residual=None):
+    """Routes the world's surface through the mix; replaces an earlier mix of ours. `residual` (residual_world):
+    what the rays that do not see the world see, instead of nothing."""
     remove_mix(world)
     if not uses_nodes(world, bpy.app.version):
         # A plain-colour world (before Blender 5.0): give it the node tree Blender would, remembering to switch it
@@ -79,9 +137,12 @@ def insert_mix(world, keep_background=True, keep_reflections=True, keep_diffuse=
 
     mix = add("ShaderNodeMixShader", 0, 0)
     mix[MIX_TAG] = 1
-    dark = add("ShaderNodeBackground", -220, -160)
-    dark.inputs["Strength"].default_value = 0.0
-    dark.inputs["Color"].default_value = (0, 0, 0, 1)
+    if residual is not None:
+        dark = _residual_background(tree, residual, add, -160)
+    else:
+        dark = add("ShaderNodeBackground", -220, -160)
+        dark.inputs["Strength"].default_value = 0.0
+        dark.inputs["Color"].default_value = (0, 0, 0, 1)
     tree.links.new(dark.outputs["Background"], mix.inputs[1])
     if original is not None:
         tree.links.new(original, mix.inputs[2])
@@ -101,22 +162,26 @@ def insert_mix(world, keep_background=True, keep_reflections=True, keep_diffuse=
         mix.inputs["Fac"].default_value = 0.0
     tree.links.new(mix.outputs["Shader"], surface)
     if keep_reflections and not keep_diffuse:
-        _eevee_output(tree, out, original, keep_background, add)
+        _eevee_output(tree, out, original, keep_background, add, residual)
     for node in added:
         node.parent = frame  # keeps each node where it is
     return mix
 
 
-def _eevee_output(tree, out, original, keep_background, add):
-    """A World Output for EEVEE only whose world is seen by the camera and lights nothing (see the module's doc)."""
+def _eevee_output(tree, out, original, keep_background, add, residual=None):
+    """A World Output for EEVEE only whose world is seen by the camera and lights nothing, or with a residual
+    lights with the residual alone (see the module's doc)."""
     eevee = add("ShaderNodeOutputWorld", 220, -340)
     eevee[EEVEE_OUTPUT_TAG] = 1
     eevee.target = "EEVEE"
     if out.target == "ALL":  # the user's output stays the one Cycles uses; a new output node may have taken
         out.is_active_output = True  # the active flag
     mix = add("ShaderNodeMixShader", 0, -340)
-    dark = add("ShaderNodeBackground", -220, -500)
-    dark.inputs["Strength"].default_value = 0.0
+    if residual is not None:
+        dark = _residual_background(tree, residual, add, -500)
+    else:
+        dark = add("ShaderNodeBackground", -220, -500)
+        dark.inputs["Strength"].default_value = 0.0
     tree.links.new(dark.outputs["Background"], mix.inputs[1])
     if original is not None:
         tree.links.new(original, mix.inputs[2])
@@ -142,8 +207,12 @@ def remove_mix(world):
         shader = mix.inputs[2]
         if shader.is_linked:
             original = shader.links[0].from_socket
+    images = {n.image for n in _tagged(tree) if n.bl_idname == "ShaderNodeTexEnvironment" and n.image is not None}
     for node in _tagged(tree):
         tree.nodes.remove(node)
+    for image in images:  # the residual images of ours nothing else uses
+        if image.get(NODE_TAG) and image.users == 0:
+            bpy.data.images.remove(image)
     if out is not None:
         if out.get(NODE_TAG + "_moved"):  # baked by version 0.1, which moved the output to make room
             out.location.x -= 220

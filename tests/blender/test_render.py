@@ -72,6 +72,38 @@ def test_baked_lights_render_like_the_world():
     assert worst < BOUND, "the lights differ from the world by %.2f %% (bound %.1f %%)" % (100 * worst, 100 * BOUND)
 
 
+def test_lamps_of_the_sources_and_the_residual_world_render_like_the_world():
+    """Lamps take: The bright sources. The lamps take the light above 10 x the world's mean and the world's light
+    rays see the residual (the camera and reflections the original): the render must match the world's, and in it
+    nothing is lit twice (lamps hidden, the residual world alone is darker by the lamps' share). Restore takes the
+    residual image out with the mix."""
+    harness.empty_scene()
+    image = bpy.data.images.load(harness.BUNDLED_PROBE)
+    harness.env_world(image, rotation=(0.0, 0.0, math.radians(70)))  # the residual must turn with the probe
+    sphere_over_plane()
+    world_lit = render()
+    assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=4, lamps_take="SOURCES") == {"FINISHED"}
+    residuals = [i for i in bpy.data.images if i.get("probe_lights")]
+    assert len(residuals) == 1 and residuals[0].packed_file is not None, residuals
+    both = render()
+    lamps = [o for o in bpy.data.objects if o.type == "LIGHT"]
+    for o in lamps:
+        o.hide_render = True
+    residual_only = render()
+    for o in lamps:
+        o.hide_render = False
+    diff, blocks = block_difference(world_lit, both)
+    share = 1 - float(np.sum(residual_only[..., :3] @ LUM)) / float(np.sum(world_lit[..., :3] @ LUM))
+    print("  %d lamps of the sources + the residual world: %.2f %% from the world (%d lit 8x8 blocks, %d spp); "
+          "the lamps light %.0f %% of the picture" % (len(lamps), 100 * diff, blocks, SAMPLES, 100 * share),
+          flush=True)
+    assert diff < BOUND and share > 0.2, (diff, share)
+    assert bpy.ops.probe_lights.restore() == {"FINISHED"}
+    assert not [i for i in bpy.data.images if i.get("probe_lights")]
+    restored = render()
+    assert block_difference(world_lit, restored)[0] < 0.01
+
+
 SUN_ANGLES = (0, 10, 30, 90, 120)  # degrees, full angle
 
 
@@ -149,4 +181,5 @@ def test_light_units_in_cycles():
     assert abs(scaled / baked - 1) < 1e-3, (scaled, baked)
 
 
-harness.run([test_light_units_in_cycles, test_baked_lights_render_like_the_world])
+harness.run([test_light_units_in_cycles, test_baked_lights_render_like_the_world,
+             test_lamps_of_the_sources_and_the_residual_world_render_like_the_world])
