@@ -34,16 +34,7 @@ W, H = 160, 120
 
 
 def scene_for(probe, engine):
-    harness.empty_scene()
-    shadows.restore(bpy.context.scene)
-    harness.env_world(bpy.data.images.load(probe))
-    render_scene.sphere_over_plane(W, H, samples)
-    scene = bpy.context.scene
-    scene.render.film_transparent = True  # the objects' pixels are those of alpha 1 (block_difference)
-    scene.eevee.taa_render_samples = samples
-    scene.eevee.shadow_pool_size, scene.eevee.shadow_resolution_scale = "512", 1.0
-    scene.render.engine = engine
-    return scene
+    return render_scene.eevee_comparison_scene(probe, engine, W, H, samples)
 
 
 def difference(reference, other):
@@ -56,10 +47,6 @@ print("| probe | EEVEE, world (sun extraction) | EEVEE, 64 lamps baked in EEVEE 
 print("|---|---|---|---|---|")
 for probe in PROBES:
     scene = scene_for(probe, "CYCLES")
-    scene.cycles.samples = 8 * samples  # block_difference takes the lit object pixels from its alpha
-    # Direct light only: EEVEE bounces no light off the plane without baked light probes, which is not what the
-    # lamps or the shadow pool are measured for.
-    scene.cycles.max_bounces = 0
     reference = render_scene.render()  # Cycles, world-lit
     scene.render.engine = eevee
     world = render_scene.render()  # EEVEE's own world lighting, sun extraction at its default threshold

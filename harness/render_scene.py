@@ -177,3 +177,23 @@ def save_png(pixels, path):
     img.file_format = "PNG"
     img.save()
     bpy.data.images.remove(img)
+
+
+def eevee_comparison_scene(probe, engine, width, height, samples):
+    """The sphere over a plane lit by `probe`'s world, for EEVEE held to Cycles (bench/bench_eevee_*.py): the
+    add-on's EEVEE settings undone, EEVEE's shadow pool at its default, the film transparent (block_difference
+    takes the lit object pixels from the alpha), EEVEE at `samples` and Cycles at 8 times as many with direct light
+    only (EEVEE bounces no light off the plane without baked light probes)."""
+    import harness
+    harness.empty_scene()
+    harness.addon_module("eevee_settings").restore(bpy.context.scene)
+    harness.env_world(bpy.data.images.load(probe))
+    sphere_over_plane(width, height, samples)
+    scene = bpy.context.scene
+    scene.render.film_transparent = True
+    scene.eevee.taa_render_samples = samples
+    scene.eevee.shadow_pool_size, scene.eevee.shadow_resolution_scale = "512", 1.0
+    scene.cycles.samples = 8 * samples
+    scene.cycles.max_bounces = 0
+    scene.render.engine = engine
+    return scene

@@ -109,7 +109,9 @@ def test_gltf_points_come_back_through_blenders_importer():
         len(points), distance))
 
 
-def test_gltf_suns_render_as_the_world_and_the_addons_bake():
+def world_and_addon_renders():
+    """The bundled probe's world and the add-on's bake of 16 suns rendered (the references the imported lamps are
+    held to), then the world restored."""
     harness.empty_scene()
     harness.env_world(bpy.data.images.load(harness.BUNDLED_PROBE))
     render_scene.sphere_over_plane(WIDTH, HEIGHT, SAMPLES)
@@ -117,6 +119,11 @@ def test_gltf_suns_render_as_the_world_and_the_addons_bake():
     assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=16) == {"FINISHED"}
     addon_lit = render_scene.render()
     assert bpy.ops.probe_lights.restore() == {"FINISHED"}
+    return world_lit, addon_lit
+
+
+def test_gltf_suns_render_as_the_world_and_the_addons_bake():
+    world_lit, addon_lit = world_and_addon_renders()
     bpy.context.scene.world = None  # the glTF's suns alone (a black world)
     with tempfile.TemporaryDirectory() as folder:
         gltf = cli_bake(folder)[3]
@@ -176,13 +183,7 @@ def test_usd_points_come_back_through_blenders_importer():
 def test_usd_suns_render_as_the_world_and_the_addons_bake():
     if not has_usd():
         return
-    harness.empty_scene()
-    harness.env_world(bpy.data.images.load(harness.BUNDLED_PROBE))
-    render_scene.sphere_over_plane(WIDTH, HEIGHT, SAMPLES)
-    world_lit = render_scene.render()
-    assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=16) == {"FINISHED"}
-    addon_lit = render_scene.render()
-    assert bpy.ops.probe_lights.restore() == {"FINISHED"}
+    world_lit, addon_lit = world_and_addon_renders()
     bpy.context.scene.world = None  # the USD's suns alone (a black world)
     with tempfile.TemporaryDirectory() as folder:
         usd = cli_bake(folder, to="usd")[3]
