@@ -149,8 +149,7 @@ std::vector<RequestOption> makeOptions() {
           [](const R& r) { return real(r.sources.level); }),
       option(
           "source_share", "S",
-          "the lamps take this share of the probe's light from its brightest pixels down, the world keeps "
-          "the "
+          "the lamps take this share of the probe's light, its brightest pixels first, the world keeps the "
           "rest (e.g. 60%; 0: off)",
           [](R& r, S o, S v) {
             const double x = parseTolerance(o, v);
@@ -230,8 +229,7 @@ EvaluatedBake bakeSources(const Probe& probe, const BakeRequest& request) {
   if (request.accuracy.refit)
     throw Error(
         "the lamps of the sources carry their regions' light exactly, as the residual needs: leave out the "
-        "refit "
-        "(refit, move_directions)");
+        "refit (refit, move_directions)");
   if (request.accuracy.maxError > 0)
     throw Error("with source_level or source_share, choose the lamps' count (lights), not max_error");
   SourceSplit split = splitSources(probe, request.sources);
