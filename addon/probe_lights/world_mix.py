@@ -75,8 +75,8 @@ def _residual_background(tree, residual, add, dy):
         coords = add("ShaderNodeTexCoord", -880, dy)
         tree.links.new(coords.outputs["Generated"], mapping.inputs["Vector"])
         tree.links.new(mapping.outputs["Vector"], env.inputs["Vector"])
-    # The probe's strength now (a driver on the world's own tree, reading it, would be a dependency cycle): the
-    # panel asks for a bake again when it changes.
+    # The probe's strength now: a driver on the world's own tree reading it would be a dependency cycle, so a
+    # later change of the strength is not followed here as the lamps follow it (docs/blender.md: bake again).
     bg.inputs["Strength"].default_value = residual.strength
     return bg
 
