@@ -193,7 +193,9 @@ def tree_snapshot(world):
         nodes[n.name] = (n.bl_idname, tuple(round(c, 3) for c in n.location), tuple(values))
     links = sorted((l.from_node.name, l.from_socket.identifier, l.to_node.name, l.to_socket.identifier)
                    for l in nt.links)
-    return (world.use_nodes if bpy.app.version < (5, 0, 0) else True), nodes, links
+    visibility = tuple(getattr(world.cycles_visibility, ray) for ray in ("camera", "diffuse", "glossy", "transmission",
+                                                                     "scatter", "shadow"))
+    return (world.use_nodes if bpy.app.version < (5, 0, 0) else True), nodes, links, visibility
 
 
 def angle_deg(a, b):

@@ -52,6 +52,49 @@ def sphere_over_plane(width, height, samples):
     scene.cycles.sample_clamp_indirect = 0.0  # the reference must be unbiased (Blender 3.x defaults to 10)
 
 
+ROUGHNESS = (0.2, 0.5, 1.0)
+
+
+def principled_material(roughness, base=0.8):
+    """Blender's default Principled BSDF (specular IOR level 0.5) at a grey base colour and `roughness`."""
+    mat = bpy.data.materials.new("principled %.2f" % roughness)
+    if bpy.app.version < (5, 0, 0):
+        mat.use_nodes = True
+    p = mat.node_tree.nodes["Principled BSDF"]
+    p.inputs["Base Color"].default_value = (base, base, base, 1)
+    p.inputs["Roughness"].default_value = roughness
+    return mat
+
+
+def glossy_spheres(width, height, samples, roughness=ROUGHNESS):
+    """sphere_over_plane's set-up with one Principled sphere per roughness side by side, left to right, each over
+    its own third of a plane of the same material: the picture's column thirds are the three materials (thirds())."""
+    sphere_over_plane(width, height, samples)
+    for o in list(bpy.data.objects):
+        if o.type == "MESH":
+            bpy.data.objects.remove(o)
+    n = len(roughness)
+    for i, r in enumerate(roughness):
+        mat = principled_material(r)
+        x = 2.4 * (i - (n - 1) / 2)
+        bpy.ops.mesh.primitive_plane_add(size=1, location=(x, 0, 0))
+        plane = bpy.context.active_object
+        plane.scale = (2.4, 12, 1)
+        plane.data.materials.append(mat)
+        bpy.ops.mesh.primitive_uv_sphere_add(radius=1, location=(x, 0, 1), segments=48, ring_count=24)
+        bpy.ops.object.shade_smooth()
+        bpy.context.active_object.data.materials.append(mat)
+    cam = bpy.context.scene.camera
+    cam.location = (0, -9.5, 3.4)
+    cam.rotation_euler = (math.radians(75), 0, 0)
+
+
+def thirds(image):
+    """The picture's column thirds (glossy_spheres' materials, left to right)."""
+    w = image.shape[1] // 3
+    return [image[:, i * w:(i + 1) * w] for i in range(3)]
+
+
 def ground_under_sphere(samples, size=16):
     """The evaluator's shadow scene (native/include/probelights/evaluate.h), rendered: a white diffuse plane at z = 0
     under a unit sphere resting on it at the origin, seen straight down by an orthographic camera over

@@ -112,8 +112,10 @@ def bake_world(context, settings, progress=lambda fraction: None, rendered=None,
         raise ProbeError(message) from None
     bake_done = time.perf_counter()
     progress(0.8)
+    # The lamps of the sources light every effect, the residual world the rest (world_mix.py says why).
     lights = make_lights(scene, world, baked, source, settings.light_type, settings.distance,
-                         lights_diffuse=settings.replace_diffuse, lights_glossy=settings.replace_reflections)
+                         lights_diffuse=settings.replace_diffuse or sources,
+                         lights_glossy=settings.replace_reflections or sources)
     residual = residual_world(world, baked["sources"]["residual"], source) if sources else None
     insert_mix(world, keep_background=not settings.replace_background,
                keep_reflections=not settings.replace_reflections, keep_diffuse=not settings.replace_diffuse,

@@ -72,8 +72,10 @@ def draw_panel(layout, context):
         box.prop(settings, "source_level")
     box.label(text="Lamps replace the world's:")
     c = box.column(align=True)
-    c.prop(settings, "replace_diffuse")
-    c.prop(settings, "replace_reflections")
+    sub = c.column(align=True)
+    sub.enabled = settings.lamps_take == "ALL"  # the lamps of the sources light every effect, the residual the rest
+    sub.prop(settings, "replace_diffuse")
+    sub.prop(settings, "replace_reflections")
     c.prop(settings, "replace_background")
 
     row = layout.row()

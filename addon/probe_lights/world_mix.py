@@ -1,23 +1,32 @@
-"""Never light a scene twice: a Light Path mix in the world tree that keeps the world only for the effects the
-user keeps from it (camera background, reflections, diffuse), and a restore that takes it out again exactly.
+"""Never light a scene twice: the world keeps only the effects the user keeps from it (camera background,
+reflections, diffuse), and a restore takes that out again exactly.
 
-    [original surface] ----------------------- Shader (fac 1)
+    [original surface] ----------------------- Shader (Fac 1)
                                                              Mix Shader --> World Output
-    [Background, strength 0] ----------------- Shader (fac 0)
-    Light Path: Is Camera / Is Glossy / Is Diffuse Ray -> (Maximum) -> Fac
+    [Background, strength 0 | the residual] -- Shader (Fac 0)
+    Fac: Light Path "Is Camera Ray" (or 1 - it, or a constant)
 
-When the lamps take only the bright sources (Lamps take: The bright sources), the rays that would see nothing
-see the residual instead: a Background of the residual image (what the core's split leaves of the probe, packed
-in the .blend), looked up along the same directions as the probe at its strength, so that lamps and residual
-together are the world's light, once.
+The camera's rays are routed by the mix; the light rays by the world's own Cycles ray visibility (Diffuse,
+Transmission and Scatter off when the lamps take diffuse light, Glossy off when they take reflections), never by
+"Is Glossy Ray" / "Is Diffuse Ray" in the mix. Why: Cycles samples one closure of a Principled BSDF but carries
+the whole BSDF's value on the ray, labelled with that closure, and evaluates the world for light sampling with
+no ray type at all; a mix that shows the world to glossy rays only therefore gives a glossy material the wrong
+share of it. Measured (bpy 4.5.15, Principled roughness 0.1-1.0, 16 suns, 512 samples; bench/bench_glossy.py):
+1.3-5.4 % from the world's render through the mix, 0.3-1.0 % through the visibility, which Cycles applies per
+closure when it samples the world as a light.
 
-Every node it adds carries the custom property "probe_lights"; the mix also carries world_graph.MIX_TAG. Nothing
-else in the tree is touched, so removing the tagged nodes and linking the original surface back restores it.
-EEVEE lights diffuse and reflections from one world probe, so it cannot keep only the world's reflections. EEVEE
-Legacy (3.x) captures that probe as a non-camera, non-glossy ray, so the mix above gives it no world light. EEVEE
-Next (4.2+) captures it as a glossy ray (a world kept for glossy rays lit the objects fully: the scene twice;
-tests/blender/test_eevee.py). So when the world keeps reflections but not diffuse light, EEVEE gets a World Output of its own
-(target EEVEE) that shows the world to the camera only: in EEVEE the lamps then light everything, once.
+When the lamps take only the bright sources (Lamps take: The bright sources), every ray but the camera's sees
+the residual (what the core's split leaves of the probe, packed in the .blend, looked up along the same
+directions as the probe at its strength) and the lamps light every effect: lamps and residual together are the
+world's light, once, with nothing routed by effect (0.06-0.3 % from the world on glossy materials, same bench).
+
+Every node it adds carries the custom property "probe_lights"; the mix also carries world_graph.MIX_TAG; the
+world's ray visibility before the bake is kept in its VISIBILITY_TAG property. Nothing else is touched, so
+removing the tagged nodes, linking the original surface back and setting the flags back restores it.
+EEVEE lights diffuse and reflections from one world probe and ignores Cycles' ray visibility, so it cannot keep
+only the world's reflections: when the world keeps reflections or diffuse light for Cycles, EEVEE gets a World
+Output of its own (target EEVEE) that shows the world to the camera only: in EEVEE the lamps then light
+everything, once (tests/blender/test_eevee.py). With a residual the mix is already what EEVEE needs.
 """
 
 from dataclasses import dataclass
@@ -30,6 +39,8 @@ from .world_graph import MIX_TAG, transpose, uses_nodes
 NODE_TAG = "probe_lights"
 ENABLED_NODES_TAG = "probe_lights_enabled_nodes"
 EEVEE_OUTPUT_TAG = "probe_lights_eevee_output"
+VISIBILITY_TAG = "probe_lights_visibility"  # the world's Cycles ray visibility before the bake
+RAYS = ("diffuse", "glossy", "transmission", "scatter")
 
 
 @dataclass
@@ -98,7 +109,8 @@ def _active_output(tree):
 
 def insert_mix(world, keep_background=True, keep_reflections=True, keep_diffuse=False, residual=None):
     """Routes the world's surface through the mix; replaces an earlier mix of ours. `residual` (residual_world):
-    what the rays that do not see the world see, instead of nothing."""
+    what every ray but the camera's sees (keep_reflections and keep_diffuse do not apply: the lamps of the sources
+    light every effect)."""
     remove_mix(world)
     if not uses_nodes(world, bpy.app.version):
         # A plain-colour world (before Blender 5.0): give it the node tree Blender would, remembering to switch it
@@ -146,42 +158,65 @@ def insert_mix(world, keep_background=True, keep_reflections=True, keep_diffuse=
     tree.links.new(dark.outputs["Background"], mix.inputs[1])
     if original is not None:
         tree.links.new(original, mix.inputs[2])
-    kept = [name for name, keep in (("Is Camera Ray", keep_background), ("Is Glossy Ray", keep_reflections),
-                                    ("Is Diffuse Ray", keep_diffuse)) if keep]
-    if kept:
+    # Which rays see the original (mix input 2, weight Fac): the camera's, and with all of the light in the lamps
+    # the light rays of the effects the world keeps, which Cycles routes by the world's own ray visibility below.
+    keeps_light = residual is None and (keep_reflections or keep_diffuse)
+    if keeps_light and keep_background:
+        mix.inputs["Fac"].default_value = 1.0
+    elif keeps_light or keep_background:
         path = add("ShaderNodeLightPath", -660, 0)
-        fac = path.outputs[kept[0]]
-        for i, name in enumerate(kept[1:]):
-            m = add("ShaderNodeMath", -440, -120 * i)
-            m.operation = "MAXIMUM"
-            tree.links.new(fac, m.inputs[0])
-            tree.links.new(path.outputs[name], m.inputs[1])
+        fac = path.outputs["Is Camera Ray"]
+        if not keep_background:  # every ray but the camera's
+            m = add("ShaderNodeMath", -440, 0)
+            m.operation = "SUBTRACT"
+            m.inputs[0].default_value = 1.0
+            tree.links.new(fac, m.inputs[1])
             fac = m.outputs[0]
         tree.links.new(fac, mix.inputs["Fac"])
     else:
         mix.inputs["Fac"].default_value = 0.0
     tree.links.new(mix.outputs["Shader"], surface)
-    if keep_reflections and not keep_diffuse:
-        _eevee_output(tree, out, original, keep_background, add, residual)
+    if keeps_light:
+        _route_by_visibility(world, diffuse=keep_diffuse, glossy=keep_reflections)
+        if not (keep_reflections and keep_diffuse):
+            _eevee_output(tree, out, original, keep_background, add)
     for node in added:
         node.parent = frame  # keeps each node where it is
     return mix
 
 
-def _eevee_output(tree, out, original, keep_background, add, residual=None):
-    """A World Output for EEVEE only whose world is seen by the camera and lights nothing, or with a residual
-    lights with the residual alone (see the module's doc)."""
+def _route_by_visibility(world, diffuse, glossy):
+    """Lets the world light only the effects it keeps, by its Cycles ray visibility (Diffuse, and Transmission and
+    Volume Scatter, which the lamps take with it; Glossy), remembering the user's flags for remove_mix. A flag the
+    user had off stays off."""
+    vis = world.cycles_visibility
+    if VISIBILITY_TAG not in world:
+        world[VISIBILITY_TAG] = {ray: int(getattr(vis, ray)) for ray in RAYS}
+    for ray, keep in (("diffuse", diffuse), ("transmission", diffuse), ("scatter", diffuse), ("glossy", glossy)):
+        setattr(vis, ray, bool(world[VISIBILITY_TAG][ray]) and keep)
+
+
+def _restore_visibility(world):
+    saved = world.get(VISIBILITY_TAG)
+    if saved is None:
+        return False
+    for ray in RAYS:
+        setattr(world.cycles_visibility, ray, bool(saved[ray]))
+    del world[VISIBILITY_TAG]
+    return True
+
+
+def _eevee_output(tree, out, original, keep_background, add):
+    """A World Output for EEVEE only whose world is seen by the camera and lights nothing (see the module's
+    doc)."""
     eevee = add("ShaderNodeOutputWorld", 220, -340)
     eevee[EEVEE_OUTPUT_TAG] = 1
     eevee.target = "EEVEE"
     if out.target == "ALL":  # the user's output stays the one Cycles uses; a new output node may have taken
         out.is_active_output = True  # the active flag
     mix = add("ShaderNodeMixShader", 0, -340)
-    if residual is not None:
-        dark = _residual_background(tree, residual, add, -500)
-    else:
-        dark = add("ShaderNodeBackground", -220, -500)
-        dark.inputs["Strength"].default_value = 0.0
+    dark = add("ShaderNodeBackground", -220, -500)
+    dark.inputs["Strength"].default_value = 0.0
     tree.links.new(dark.outputs["Background"], mix.inputs[1])
     if original is not None:
         tree.links.new(original, mix.inputs[2])
@@ -195,12 +230,15 @@ def _eevee_output(tree, out, original, keep_background, add, residual=None):
 
 def remove_mix(world):
     """Takes the add-on's nodes out and links the original surface back. True if there was anything to remove."""
-    if world is None or world.node_tree is None:
+    if world is None:
         return False
+    restored = _restore_visibility(world)
+    if world.node_tree is None:
+        return restored
     tree = world.node_tree
     mixes = [n for n in tree.nodes if n.get(MIX_TAG)]
     if not mixes and not _tagged(tree):
-        return False
+        return restored
     out = _active_output(tree)
     original = None
     for mix in mixes:

@@ -338,6 +338,17 @@ def test_restore_brings_the_world_back_exactly():
     assert bpy.ops.probe_lights.restore() == {"FINISHED"}
     assert harness.tree_snapshot(world) == before
     assert not light_objects.baked_lights(bpy.context.scene.world)
+    # The default split keeps the world for reflections by its ray visibility: a flag the user had off stays off,
+    # a re-bake keeps the user's flags, and Restore sets them all back.
+    vis = world.cycles_visibility
+    vis.scatter = False
+    before = harness.tree_snapshot(world)
+    bake(count=8, replace_reflections=False)
+    bake(count=8, replace_reflections=False)
+    assert (vis.camera, vis.diffuse, vis.glossy, vis.transmission, vis.scatter) == (True, False, True, False, False)
+    assert bpy.ops.probe_lights.restore() == {"FINISHED"}
+    assert harness.tree_snapshot(world) == before and not vis.scatter and vis.diffuse
+    vis.scatter = True
 
 
 def expect_report(text):
