@@ -5,8 +5,8 @@ direct light only (EEVEE bounces none without baked light probes). Against it:
   (a) EEVEE lit by the world alone, with its sun extraction at its default;
   (b) EEVEE with the add-on's lamps taking all of the light (Lamps take: All of the light, the default);
   (c) EEVEE with 4 lamps of the bright sources and the residual world (Lamps take: The bright sources: a few
-      lamps hold the sources; 16 sharp suns there overflow EEVEE's shadow pool, which the add-on's page model,
-      measured on the spread suns of (b), does not foresee);
+      lamps hold the sources; the table was made when 16 sharp suns there overflowed EEVEE's shadow pool, before
+      the add-on counted a sun's pages by its elevation);
 and, in Cycles, (c) against the world alone, with the render time of each. The difference is
 render_scene.block_difference's: 8x8 blocks of lit pixels, mean |render - reference| / reference of their luminance.
 

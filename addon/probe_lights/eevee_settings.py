@@ -1,9 +1,9 @@
 """EEVEE shadow settings the baked suns need, offered and reversible (EEVEE Next: Blender 4.2 and newer).
 
 EEVEE Next keeps every shadow in one pool of pages (Render > Performance > Shadow Pool, 512 MB by default: 2,048
-pages). Each sun takes about a hundred pages whatever the image size, so past about 19 suns the pool is full; EEVEE
-then drops pages by thread timing, and the shadows (and the picture's brightness) change from one render to the
-next. Halving the shadow resolution (Shadows > Resolution) takes a sun to about a tenth of the pages and changes the
+pages). Each sun takes 50 to 165 pages whatever the image size (the higher the sun, the more), so past 12 to 40
+suns the pool is full; EEVEE then drops pages by thread timing, and the shadows (and the picture's brightness)
+change from one render to the next. Halving the shadow resolution (Shadows > Resolution) takes a sun to about a tenth of the pages and changes the
 picture by little (docs/eevee.md). The fit is the smallest pool that holds the suns' pages (and half or quarter
 resolution when even the largest pool cannot); the values it replaced are kept on the scene and put back by
 Restore world.
@@ -18,13 +18,20 @@ done; Restore world undoes it.
 import bpy
 
 from .light_objects import baked_lights
+from .world_mix import has_residual
 from .remembered import put_back, set_remembering
 
 BEFORE_KEY = "probe_lights_eevee_before"  # on the scene: the settings the offer replaced
 
-# Pages one sun needs, by the scene's shadow resolution scale (EEVEE's page counts of 64 suns, alike in Blender
-# 4.5 and 5.2; docs/eevee.md); a scale between two rows costs what the row above it does.
-PAGES_PER_SUN = ((1.0, 107), (0.5, 12), (0.25, 7))
+# Pages one sun needs at shadow resolution scale 1, by its elevation: EEVEE Next covers what the sun sees of the
+# scene, the more the higher the sun. 8 suns over the render test's sphere and plane at elevations 3, 10, 20, 40,
+# 60, 85 degrees took 50, 63, 83, 118, 151, 164 pages each (bpy 4.5.15, whatever their angle from 0 to 40 degrees):
+# 44 + 121 sin(elevation) within 4 %. (A count of 107 per sun, measured on 64 spread suns, left 16 sharp suns
+# around a high sun 30 % short: "Shadow buffer full".)
+PAGES_AT_HORIZON, PAGES_PER_SINE = 44.0, 121.0
+# The share of those pages a sun takes at a lower shadow resolution scale (64 suns: 107, 12, 7 pages each at
+# 1, 0.5, 0.25, alike in Blender 4.5 and 5.2; docs/eevee.md); a scale between two rows costs what the row above does.
+RESOLUTION_SHARE = ((1.0, 1.0), (0.5, 12 / 107), (0.25, 7 / 107))
 PAGES_PER_MB = 4  # the 512 MB pool holds 2,048 pages
 MARGIN = 1.1  # the page count varies a little with the view
 MAX_POOL_MB = 1024  # Blender 5.2 offers 2 GB, which failed here ("Could not allocate shadow atlas": nothing rendered)
@@ -34,9 +41,23 @@ def _eevee_next(scene):
     return bpy.app.version >= (4, 2, 0) and scene.render.engine in ("BLENDER_EEVEE_NEXT", "BLENDER_EEVEE")
 
 
-def _pages(suns, scale):
-    per_sun = next((pages for at, pages in reversed(PAGES_PER_SUN) if at >= scale - 1e-6), PAGES_PER_SUN[0][1])
-    return int(suns * per_sun * MARGIN)
+def _pages(load, scale):
+    """Pages at shadow resolution `scale` of suns that need `load` pages at scale 1 (sun_pages)."""
+    share = next((share for at, share in reversed(RESOLUTION_SHARE) if at >= scale - 1e-6), 1.0)
+    return int(load * share * MARGIN)
+
+
+def sun_pages(scene):
+    """The pages the baked suns need at shadow resolution scale 1, by their elevations; with a residual world, one
+    sun more overhead (EEVEE's own sun extraction may take one from it)."""
+    total = 0.0
+    for o in baked_lights(scene.world):
+        if o.type == "LIGHT" and o.data.type == "SUN":
+            up = o.matrix_world.to_3x3().col[2]  # towards the sun: a sun shines along its -Z
+            total += PAGES_AT_HORIZON + PAGES_PER_SINE * abs(up.z) / max(up.length, 1e-12)
+    if has_residual(scene.world):
+        total += PAGES_AT_HORIZON + PAGES_PER_SINE
+    return total
 
 
 def _pools(scene):
@@ -45,39 +66,41 @@ def _pools(scene):
     return sorted(int(item.identifier) for item in items)
 
 
-def _wanted(scene, suns):
-    """{setting: value}: the smallest pool (no smaller than the scene's, at most 1 GB) that holds the suns' pages at
-    the scene's shadow resolution, else at half or a quarter of it; {} when the pool already holds them."""
+def _wanted(scene):
+    """{setting: value}: the smallest pool (no smaller than the scene's, at most 1 GB) that holds the baked suns'
+    pages at the scene's shadow resolution, else at half or a quarter of it; {} when the pool already holds them."""
     eevee = scene.eevee
     scale = eevee.shadow_resolution_scale
-    if _pages(suns, scale) <= int(eevee.shadow_pool_size) * PAGES_PER_MB:
+    load = sun_pages(scene)
+    if _pages(load, scale) <= int(eevee.shadow_pool_size) * PAGES_PER_MB:
         return {}
     pool = int(eevee.shadow_pool_size)
     pools = [mb for mb in _pools(scene) if pool <= mb <= max(pool, MAX_POOL_MB)]  # never smaller than the user's
-    for try_scale in [scale] + [s for s, _ in PAGES_PER_SUN if s < scale - 1e-6]:
-        fits = [mb for mb in pools if mb * PAGES_PER_MB >= _pages(suns, try_scale)]
+    for try_scale in [scale] + [s for s, _ in RESOLUTION_SHARE if s < scale - 1e-6]:
+        fits = [mb for mb in pools if mb * PAGES_PER_MB >= _pages(load, try_scale)]
         if fits:
             wanted = {"shadow_pool_size": str(fits[0])} if fits[0] != pool else {}
             if try_scale != scale:
                 wanted["shadow_resolution_scale"] = try_scale
             return wanted
-    return {"shadow_pool_size": str(pools[-1]), "shadow_resolution_scale": PAGES_PER_SUN[-1][0]}
+    return {"shadow_pool_size": str(pools[-1]), "shadow_resolution_scale": RESOLUTION_SHARE[-1][0]}
 
 
 def advice(scene, suns):
-    """One line on what the shadow pool lacks for the baked suns, or '' when it holds them (or the engine is not
-    EEVEE Next)."""
-    if not _eevee_next(scene) or suns < 2 or not _wanted(scene, suns):
+    """One line on what the shadow pool lacks for the `suns` baked suns, or '' when it holds them (or the engine is
+    not EEVEE Next)."""
+    if not _eevee_next(scene) or suns < 2 or not _wanted(scene):
         return ""
     return ("EEVEE's shadow pool is too small for %d suns and drops shadows at random: fit the shadows to the lamps"
             % suns)
 
 
 def apply(scene, suns):
-    """Sets the pool (and resolution) the suns need, remembering what it replaced (once). Returns {name: value}."""
+    """Sets the pool (and resolution) the baked suns need, remembering what it replaced (once). Returns
+    {name: value}."""
     if not _eevee_next(scene):
         return {}
-    wanted = _wanted(scene, suns)
+    wanted = _wanted(scene)
     set_remembering(scene, BEFORE_KEY, scene.eevee, wanted)
     return wanted
 
@@ -104,7 +127,7 @@ def follow(scene):
     if not _eevee_next(scene):
         return {}
     suns = baked_suns(scene)
-    if suns < 2 or not _wanted(scene, suns):
+    if suns < 2 or not _wanted(scene):
         return {}
     return apply(scene, suns)
 

@@ -96,6 +96,12 @@ def _tagged(tree):
     return [n for n in tree.nodes if n.get(NODE_TAG)]
 
 
+def has_residual(world):
+    """Whether the world's light rays see a residual of ours (Lamps take: The bright sources)."""
+    return (world is not None and world.node_tree is not None
+            and any(n.get(NODE_TAG) and n.bl_idname == "ShaderNodeTexEnvironment" for n in world.node_tree.nodes))
+
+
 def has_mix(world):
     return world is not None and world.node_tree is not None and any(n.get(MIX_TAG) for n in world.node_tree.nodes)
 

@@ -611,7 +611,7 @@ def test_eevee_shadow_pool_follows_the_scene_and_restore():
     assert bpy.ops.probe_lights.eevee_settings() == {"FINISHED"} and shadows.advice(scene, 30) == ""
     assert bpy.ops.probe_lights.restore() == {"FINISHED"} and scene.eevee.shadow_pool_size == "512"
     scene.eevee.shadow_resolution_scale = 0.75  # between two measured scales: costed as the finer one
-    assert shadows._pages(20, 0.75) == 2354
+    assert shadows._pages(2140, 0.75) == 2354
     scene.eevee.shadow_resolution_scale = 1.0
     scene.render.engine = "CYCLES"
 
