@@ -6,19 +6,22 @@ reflections, diffuse), and a restore takes that out again exactly.
     [Background, strength 0 | the residual] -- Shader (Fac 0)
     Fac: Light Path "Is Camera Ray" (or 1 - it, or a constant)
 
-The camera's rays are routed by the mix; the light rays by the world's own Cycles ray visibility (Diffuse,
-Transmission and Scatter off when the lamps take diffuse light, Glossy off when they take reflections), never by
-"Is Glossy Ray" / "Is Diffuse Ray" in the mix. Why: Cycles samples one closure of a Principled BSDF but carries
-the whole BSDF's value on the ray, labelled with that closure, and evaluates the world for light sampling with
-no ray type at all; a mix that shows the world to glossy rays only therefore gives a glossy material the wrong
-share of it. Measured (bpy 4.5.15, Principled roughness 0.1-1.0, 16 suns, 512 samples; bench/bench_glossy.py):
-1.3-5.4 % from the world's render through the mix, 0.3-1.0 % through the visibility, which Cycles applies per
-closure when it samples the world as a light.
+The camera's rays are routed by the mix; the light rays by the world's own Cycles ray visibility (Diffuse and
+Volume Scatter off when the lamps take diffuse light, Glossy and Transmission off when they take reflections),
+never by "Is Glossy Ray" / "Is Diffuse Ray" in the mix. Why: Cycles samples one closure of a Principled BSDF but
+carries the whole BSDF's value on the ray, labelled with that closure, and evaluates the world for light sampling
+with no ray type at all; a mix that shows the world to glossy rays only therefore gives a glossy material the
+wrong share of it. Measured on 7 probes (bpy 4.5.15, Principled roughness 0.2-1.0, 64 lamps; bench/bench_glossy.py,
+docs/glossy.md): 0.7-5.2 % from the world's render through the mix, 0.3-2.2 % through the visibility, which
+Cycles applies per closure when it samples the world as a light. Transmission goes with reflections: glass
+refracts the world, and lamps lighting it through transmission too made a glass sphere 8-12 % too bright (0.4-0.6
+% with the world alone lighting it; tests/blender/test_render.py).
 
 When the lamps take only the bright sources (Lamps take: The bright sources), every ray but the camera's sees
 the residual (what the core's split leaves of the probe, packed in the .blend, looked up along the same
 directions as the probe at its strength) and the lamps light every effect: lamps and residual together are the
-world's light, once, with nothing routed by effect (0.06-0.3 % from the world on glossy materials, same bench).
+world's light, once, with nothing routed by effect (0.2-0.7 % from the world on glossy materials at 64 lamps,
+same bench).
 
 Every node it adds carries the custom property "probe_lights"; the mix also carries world_graph.MIX_TAG; the
 world's ray visibility before the bake is kept in its VISIBILITY_TAG property. Nothing else is touched, so
@@ -192,13 +195,13 @@ def insert_mix(world, keep_background=True, keep_reflections=True, keep_diffuse=
 
 
 def _route_by_visibility(world, diffuse, glossy):
-    """Lets the world light only the effects it keeps, by its Cycles ray visibility (Diffuse, and Transmission and
-    Volume Scatter, which the lamps take with it; Glossy), remembering the user's flags for remove_mix. A flag the
-    user had off stays off."""
+    """Lets the world light only the effects it keeps, by its Cycles ray visibility (Diffuse and Volume Scatter;
+    Glossy and Transmission, which go together: glass refracts the world as it reflects it), remembering the user's
+    flags for remove_mix. A flag the user had off stays off."""
     vis = world.cycles_visibility
     if VISIBILITY_TAG not in world:
         world[VISIBILITY_TAG] = {ray: int(getattr(vis, ray)) for ray in RAYS}
-    for ray, keep in (("diffuse", diffuse), ("transmission", diffuse), ("scatter", diffuse), ("glossy", glossy)):
+    for ray, keep in (("diffuse", diffuse), ("scatter", diffuse), ("glossy", glossy), ("transmission", glossy)):
         setattr(vis, ray, bool(world[VISIBILITY_TAG][ray]) and keep)
 
 

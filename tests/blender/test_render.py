@@ -146,6 +146,38 @@ def test_glossy_materials_render_like_the_world():
                                       100 * BOUND))
 
 
+def test_glass_refracts_the_world_once():
+    """A glass sphere (Glass BSDF, roughness 0 and 0.3) over the diffuse plane, 16 lamps with the default split: the
+    world keeps reflections and, with them, transmission (glass refracts the world as it reflects it), so the
+    sphere's middle renders as the world renders it. With the lamps lighting transmission too it came out 8-12 %
+    too bright (world_mix.py)."""
+    harness.empty_scene()
+    harness.env_world(bpy.data.images.load(harness.BUNDLED_PROBE))
+    sphere_over_plane()
+    bpy.context.scene.render.film_transparent = False  # the world seen through the glass is what is compared
+    sphere = next(o for o in bpy.data.objects if o.type == "MESH" and "Sphere" in o.name)
+    middle = (slice(HEIGHT * 20 // 72, HEIGHT * 52 // 72), slice(WIDTH * 36 // 96, WIDTH * 60 // 96))
+    for roughness in (0.0, 0.3):
+        mat = bpy.data.materials.new("glass")
+        if bpy.app.version < (5, 0, 0):
+            mat.use_nodes = True
+        nt = mat.node_tree
+        nt.nodes.remove(nt.nodes["Principled BSDF"])
+        glass = nt.nodes.new("ShaderNodeBsdfGlass")
+        glass.inputs["Roughness"].default_value = roughness
+        nt.links.new(glass.outputs[0], nt.nodes["Material Output"].inputs["Surface"])
+        sphere.data.materials.clear()
+        sphere.data.materials.append(mat)
+        assert bpy.ops.probe_lights.restore() in ({"FINISHED"}, {"CANCELLED"})
+        world_lit = render()[middle][..., :3] @ LUM
+        assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=16) == {"FINISHED"}
+        lit = render()[middle][..., :3] @ LUM
+        ratio = float(lit.mean() / world_lit.mean())
+        print("  glass sphere, roughness %.1f, 16 lamps: its middle %.3f of the world's render (%d spp)" % (
+            roughness, ratio, SAMPLES), flush=True)
+        assert abs(ratio - 1) < 0.025, ratio
+
+
 SUN_ANGLES = (0, 10, 30, 90, 120)  # degrees, full angle
 
 
@@ -225,4 +257,4 @@ def test_light_units_in_cycles():
 
 harness.run([test_light_units_in_cycles, test_baked_lights_render_like_the_world,
              test_lamps_of_the_sources_and_the_residual_world_render_like_the_world,
-             test_glossy_materials_render_like_the_world])
+             test_glossy_materials_render_like_the_world, test_glass_refracts_the_world_once])
