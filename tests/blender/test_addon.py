@@ -345,7 +345,7 @@ def test_restore_brings_the_world_back_exactly():
     before = harness.tree_snapshot(world)
     bake(count=8, replace_reflections=False)
     bake(count=8, replace_reflections=False)
-    assert (vis.camera, vis.diffuse, vis.glossy, vis.transmission, vis.scatter) == (True, False, True, False, False)
+    assert (vis.camera, vis.diffuse, vis.glossy, vis.transmission, vis.scatter) == (True, False, True, True, False)
     assert bpy.ops.probe_lights.restore() == {"FINISHED"}
     assert harness.tree_snapshot(world) == before and not vis.scatter and vis.diffuse
     vis.scatter = True
