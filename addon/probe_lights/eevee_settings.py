@@ -3,10 +3,10 @@
 EEVEE Next keeps every shadow in one pool of pages (Render > Performance > Shadow Pool, 512 MB by default: 2,048
 pages). Each sun takes 50 to 165 pages whatever the image size (the higher the sun, the more), so past 12 to 40
 suns the pool is full; EEVEE then drops pages by thread timing, and the shadows (and the picture's brightness)
-change from one render to the next. Halving the shadow resolution (Shadows > Resolution) takes a sun to about a tenth of the pages and changes the
-picture by little (docs/eevee.md). The fit is the smallest pool that holds the suns' pages (and half or quarter
-resolution when even the largest pool cannot); the values it replaced are kept on the scene and put back by
-Restore world.
+change from one render to the next. Halving the shadow resolution (Shadows > Resolution) takes a sun to about a
+tenth of the pages and changes the picture by little (docs/eevee.md). The fit is the smallest pool that holds the
+suns' pages (and half or quarter resolution when even the largest pool cannot); the values it replaced are kept
+on the scene and put back by Restore world.
 
 The fit follows the scene, not the click: it is made by itself whenever the scene is to render in EEVEE with baked
 suns the pool cannot hold (before every render, including `blender -b file.blend -E BLENDER_EEVEE_NEXT -f 1`; when
@@ -95,7 +95,7 @@ def advice(scene, suns):
             % suns)
 
 
-def apply(scene, suns):
+def apply(scene):
     """Sets the pool (and resolution) the baked suns need, remembering what it replaced (once). Returns
     {name: value}."""
     if not _eevee_next(scene):
@@ -129,7 +129,7 @@ def follow(scene):
     suns = baked_suns(scene)
     if suns < 2 or not _wanted(scene):
         return {}
-    return apply(scene, suns)
+    return apply(scene)
 
 
 def _say(scene, changed):

@@ -268,7 +268,7 @@ class PROBE_LIGHTS_OT_eevee_settings(bpy.types.Operator):
     bl_options = {"REGISTER", "UNDO"}
 
     def execute(self, context):
-        changed = eevee_settings.apply(context.scene, eevee_settings.baked_suns(context.scene))
+        changed = eevee_settings.apply(context.scene)
         if changed:
             self.report({"INFO"}, "EEVEE: set %s (Restore world puts them back)" % eevee_settings.describe(changed))
         else:
