@@ -149,8 +149,8 @@ def test_glossy_materials_render_like_the_world():
 def test_glass_refracts_the_world_once():
     """A glass sphere (Glass BSDF, roughness 0 and 0.3) over the diffuse plane, 16 lamps with the default split: the
     world keeps reflections and, with them, transmission (glass refracts the world as it reflects it), so the
-    sphere's middle renders as the world renders it. With the lamps lighting transmission too it came out 8-12 %
-    too bright (world_mix.py)."""
+    sphere's middle renders as the world renders it (within 5 %). With the lamps lighting transmission too it came
+    out 8-12 % too bright (world_mix.py)."""
     harness.empty_scene()
     harness.env_world(bpy.data.images.load(harness.BUNDLED_PROBE))
     width, height = WIDTH // 2, HEIGHT // 2  # the sphere's middle is all that is compared
@@ -176,9 +176,10 @@ def test_glass_refracts_the_world_once():
         ratio = float(lit.mean() / world_lit.mean())
         print("  glass sphere, roughness %.1f, 16 lamps: its middle %.3f of the world's render (%d spp)" % (
             roughness, ratio, SAMPLES), flush=True)
-        # The middle shows mostly the plane behind the glass, lit by the lamps (81 % of its light). Debian's Cycles
-        # 3.4.1 renders it 1.033-1.035 at 256 samples (its noise there 0.8 %), 4.5.15 1.004-1.012 at 128.
-        assert abs(ratio - 1) < (0.025 if bpy.app.version >= (4, 0, 0) else 0.05), ratio
+        # The middle shows mostly the plane behind the glass, lit by the lamps (81 % of its light), and each Cycles
+        # renders it a little differently: 1.033-1.035 in Debian's 3.4.1 (256 samples, its noise 0.8 %), 1.004-1.012
+        # in 4.5.15, 5.2.3 and 5.3.0, 0.969-0.970 in 5.0.1 (128 samples).
+        assert abs(ratio - 1) < 0.05, ratio
 
 
 SUN_ANGLES = (0, 10, 30, 90, 120)  # degrees, full angle
