@@ -24,10 +24,7 @@ sys.path.insert(0, os.path.join(HERE, "..", "harness"))
 import harness  # noqa: E402
 import render_scene  # noqa: E402
 
-argv = sys.argv[sys.argv.index("--") + 1:]
-zip_path = argv[argv.index("--zip") + 1]
-shared = argv[argv.index("--shared") + 1] if "--shared" in argv else ""
-rest = [a for i, a in enumerate(argv) if not a.startswith("--") and not argv[i - 1].startswith("--")]
+zip_path, shared, rest = harness.bench_argv()
 samples = int(rest[0]) if rest else 256
 harness.install_addon(zip_path)
 PROBES = [harness.BUNDLED_PROBE]

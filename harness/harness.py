@@ -38,6 +38,15 @@ ADDON = "probe_lights"  # the add-on's module name once installed (install_addon
 BUNDLED_PROBE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "assets", "noon_grass_1k.hdr")
 
 
+def bench_argv():
+    """The arguments of a bench over every probe: (the zip, the ../shared folder or "", the other arguments)."""
+    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    zip_path = argv[argv.index("--zip") + 1]
+    shared = argv[argv.index("--shared") + 1] if "--shared" in argv else ""
+    rest = [a for i, a in enumerate(argv) if not a.startswith("--") and (i == 0 or not argv[i - 1].startswith("--"))]
+    return zip_path, shared, rest
+
+
 def bench_args(samples=256):
     """The arguments of the bench/bench_*.py scripts: the zip, then optionally a probe and a sample count."""
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
