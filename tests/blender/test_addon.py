@@ -351,6 +351,27 @@ def test_restore_brings_the_world_back_exactly():
     vis.scatter = True
 
 
+def test_lamps_light_the_effects_of_their_split_and_sample_by_importance_only_with_reflections():
+    """Which effects the lamps light (Cycles ray visibility, EEVEE's factors) and whether Cycles reaches them
+    by multiple importance sampling: off unless they light reflections, where Cycles has a light tree (3.5+;
+    docs/glossy.md)."""
+    harness.empty_scene()
+    tree = hasattr(bpy.context.scene.cycles, "use_light_tree")
+    bright_spot_world((64, 32))
+    default = {"replace_reflections": False, "lamps_take": "ALL"}
+    for settings, glossy in ((default, False), ({"replace_reflections": True, "lamps_take": "ALL"}, True),
+                             ({"replace_reflections": False, "lamps_take": "SOURCES"}, True), (default, False)):
+        lamps = bake(count=4, **settings)
+        assert lamps, settings
+        for obj in lamps:
+            flags = (obj.visible_diffuse, obj.visible_glossy, obj.visible_transmission,
+                     obj.data.cycles.use_multiple_importance_sampling)
+            assert flags == (True, glossy, glossy, glossy or not tree), (settings, obj.name, flags)
+            if hasattr(obj.data, "specular_factor"):
+                assert obj.data.specular_factor == (1.0 if glossy else 0.0), (settings, obj.name)
+    assert bpy.ops.probe_lights.restore() == {"FINISHED"}
+
+
 def expect_report(text):
     """The bake fails with one ERROR report containing `text` (from Python an operator's error report is raised)."""
     try:
@@ -759,6 +780,7 @@ harness.run([test_register_unregister, test_real_probes_bake_with_their_energy,
              test_sky_texture_world_is_rendered, test_read_and_rendered_worlds_agree,
              test_plain_colour_world_and_its_restore,
              test_rebake_replaces_only_its_own_lights, test_restore_brings_the_world_back_exactly,
+             test_lamps_light_the_effects_of_their_split_and_sample_by_importance_only_with_reflections,
              test_bad_worlds_are_one_line_reports,
              test_point_lights_give_the_same_irradiance_at_the_origin,
              test_lamps_follow_the_worlds_rotation_and_strength, test_suns_on_a_dome_around_the_scene_under_one_rig,

@@ -26,7 +26,6 @@ SAMPLES = 128 if bpy.app.version >= (4, 0, 0) else 256
 if ARGS.size:  # README pictures: e.g. --size 480x360x1024 --save docs
     WIDTH, HEIGHT, SAMPLES = (int(v) for v in ARGS.size.split("x"))
 BOUND = 0.025  # mean relative difference of lit 8x8 blocks at 16 and 64 lights (4.5.15: 0.1-0.55 %)
-GLOSSY_SPLIT_BOUND = 0.03  # the same of Principled materials with the default split (4.5.15: 0.3-2.6 %)
 LUM = render_scene.LUM
 diffuse_material, render, block_difference, save_png = (render_scene.diffuse_material, render_scene.render,
                                                         render_scene.block_difference, render_scene.save_png)
@@ -109,9 +108,11 @@ def test_glossy_materials_render_like_the_world():
     """Blender's default Principled BSDF at roughness 0.2, 0.5 and 1.0 (glossy_spheres: one sphere and ground each)
     against the world's render, each third of the picture on its own:
     - the default split (the lamps take diffuse light and shadows, the world keeps reflections), 16 and 64 lamps:
-      within GLOSSY_SPLIT_BOUND. Cycles carries a whole Principled BSDF's value on a ray labelled with one of its
-      closures, so any split by effect is biased (world_mix.py); the world's ray visibility keeps it at 0.3-2.6 %,
-      where a mix on Is Glossy Ray (the add-on before) gave 0.7-5.2 % at 64 lamps (bench/bench_glossy.py);
+      within the diffuse bound. Cycles carries a whole Principled BSDF's value on a ray labelled with one of its
+      closures, so any split by effect is biased (world_mix.py); the world's ray visibility and the lamps without
+      multiple importance sampling keep it at 0.3-2.4 % here in 4.5.15 (St. Peter's, 16 lamps, roughness 0.2, the
+      worst), where a mix on Is Glossy Ray with the lamps' MIS on (the add-on before 2026-12-03) gave 0.7-5.2 % at
+      64 lamps and 2.6 % at 16 (bench/bench_glossy.py, docs/glossy.md);
     - 64 lamps of the bright sources with the residual world, nothing split by effect: within the diffuse bound.
     On every probe of ../shared in the LTS bpy (PROBELIGHTS_GLOSSY_PROBES=all, tests/CMakeLists.txt), else on the
     bundled one (every probe in the newest too: bench/bench_glossy.py)."""
@@ -140,10 +141,9 @@ def test_glossy_materials_render_like_the_world():
                 os.path.basename(probe), take, n, "/".join("%g" % r for r in render_scene.ROUGHNESS),
                 " / ".join("%.2f" % (100 * d) for d in diffs), SAMPLES), flush=True)
             worst[take] = max(worst[take], *diffs)
-    assert worst["ALL"] < GLOSSY_SPLIT_BOUND and worst["SOURCES"] < BOUND, (
-        "glossy materials differ from the world by %.2f %% (default split, bound %.1f %%), %.2f %% (sources + "
-        "residual, bound %.1f %%)" % (100 * worst["ALL"], 100 * GLOSSY_SPLIT_BOUND, 100 * worst["SOURCES"],
-                                      100 * BOUND))
+    assert worst["ALL"] < BOUND and worst["SOURCES"] < BOUND, (
+        "glossy materials differ from the world by %.2f %% (default split), %.2f %% (sources + residual), bound "
+        "%.1f %%" % (100 * worst["ALL"], 100 * worst["SOURCES"], 100 * BOUND))
 
 
 def test_glass_refracts_the_world_once():
