@@ -4,16 +4,16 @@ render test's diffuse sphere over a plane (harness/render_scene.py); the referen
 direct light only (EEVEE bounces none without baked light probes). Against it:
   (a) EEVEE lit by the world alone, with its sun extraction at its default;
   (b) EEVEE with the add-on's lamps taking all of the light (Lamps take: All of the light, the default);
-  (c) EEVEE with 4 lamps of the bright sources and the residual world (Lamps take: The bright sources: a few
-      lamps hold the sources; the table was made when 16 sharp suns there overflowed EEVEE's shadow pool, before
-      the add-on counted a sun's pages by its elevation);
+  (c) EEVEE with 16 lamps of the bright sources and the residual world (Lamps take: The bright sources; the
+      first table, of 2026-12-02, had 4: 16 sharp suns overflowed EEVEE's shadow pool before the add-on counted a
+      sun's pages by its elevation);
 and, in Cycles, (c) against the world alone, with the render time of each. The difference is
 render_scene.block_difference's: 8x8 blocks of lit pixels, mean |render - reference| / reference of their luminance.
 
     tests/blender/run.sh --gl ~/.cache/probelights/bpy-4.5.15/bin/python bench/bench_eevee_residual.py \\
-        build/probe_lights-0.1.0-linux_x64.zip ../shared [LAMPS] [EEVEE_SAMPLES]
+        build/probe_lights-0.1.0-linux_x64.zip ../shared [LAMPS] [EEVEE_SAMPLES] [SOURCE_LAMPS]
 
-(16 lamps in (b), 32 EEVEE samples by default; the Cycles renders take 8 times as many samples)
+(16 lamps in (b), 32 EEVEE samples, 16 lamps in (c) by default; the Cycles renders take 8 times as many samples)
 """
 import glob
 import os
@@ -30,7 +30,7 @@ import render_scene  # noqa: E402
 zip_path, shared, rest = harness.bench_argv()
 lamps = int(rest[0]) if rest else 16
 samples = int(rest[1]) if len(rest) > 1 else 32
-SOURCE_LAMPS = 4
+SOURCE_LAMPS = int(rest[2]) if len(rest) > 2 else 16
 harness.install_addon(zip_path)
 studio = bpy.utils.system_resource("DATAFILES", path="studiolights/world")
 PROBES = [harness.BUNDLED_PROBE]
