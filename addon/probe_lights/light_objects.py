@@ -181,7 +181,7 @@ def make_lights(scene, world, baked, source, light_type=light_kinds.DEFAULT, dis
     kept = reusable[:count]
     _remove(collection, [o for o in collection.objects if o.get(OBJECT_TAG) and o not in kept])
 
-    light_tree = hasattr(scene.cycles, "use_light_tree")  # Cycles 3.5+
+    light_tree = hasattr(getattr(scene, "cycles", None), "use_light_tree")  # Cycles 3.5+ (None: Cycles disabled)
     strength = float(source.strength)
     follow_strength = source.strength_socket is not None and strength != 0.0
     objects = []
@@ -231,7 +231,8 @@ def make_lights(scene, world, baked, source, light_type=light_kinds.DEFAULT, dis
         # reach it (docs/glossy.md: closer to the world's render on glossy materials in 4.5, shorter renders).
         # Cycles 3.x has no light tree: it picks among the lamps nearly uniformly and MIS keeps its many-lamp
         # renders from getting noisier (noon_grass, 256 suns: 1.41 % from the world with MIS, 2.41 % without).
-        data.cycles.use_multiple_importance_sampling = bool(lights_glossy) or not light_tree
+        if hasattr(data, "cycles"):  # not when the Cycles add-on is disabled
+            data.cycles.use_multiple_importance_sampling = bool(lights_glossy) or not light_tree
         objects.append(obj)
     sync_visibility(scene)
     _hide_rig(scene, holder)
