@@ -49,9 +49,7 @@ def bench_argv():
 
 def bench_args(samples=256):
     """The arguments of the bench/bench_*.py scripts: the zip, then optionally a probe and a sample count."""
-    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-    zip_path = argv[argv.index("--zip") + 1]
-    rest = [a for i, a in enumerate(argv) if not a.startswith("--") and (i == 0 or not argv[i - 1].startswith("--"))]
+    zip_path, _, rest = bench_argv()
     return zip_path, (rest[0] if rest else BUNDLED_PROBE), (int(rest[1]) if len(rest) > 1 else samples)
 
 
