@@ -5,11 +5,14 @@
 #pragma once
 
 #include <algorithm>
+#include <condition_variable>
 #include <deque>
+#include <exception>
 #include <functional>
-#include <future>
+#include <mutex>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "probelights/moment_table.h"
@@ -41,22 +44,88 @@ LoadedProbe loadForBatch(const std::string& path, const ProbeOptions& options, c
 // baked on every core while the next one loads (a second 8K image in memory is not worth it).
 constexpr int kSmallProbeWidth = 2048;
 
-// Runs work(i) for i = 0, 1, ..., n - 1 on threads of their own, at most ahead(latest result) of them under
-// way at once, and hands each result to consume on the calling thread, in order, until consume returns false
-// (the works under way then finish and are dropped).
+// Runs work(i) for i = 0, 1, ..., n - 1 on threads of their own and hands each result to consume on the
+// calling thread, in order, until consume returns false (the works under way then finish and are dropped).
+// At most ahead(latest result) works run at once (1 before the first result), and as many more results may
+// wait for consume when ahead is above 1 (none when it is 1: a large probe's result is all memory can take):
+// a consume that stalls (a write synced to a slow disk) does not leave cores idle. Its threads live as long
+// as the call, so what a work keeps per thread (its buffers) is kept from one probe to the next. An exception
+// from work is thrown here, from the call, when its result is due.
 template <class Item, class Work, class Ahead, class Consume>
 void runAhead(std::size_t n, Work work, Ahead ahead, Consume consume) {
-  std::deque<std::future<Item>> running;
-  std::size_t next = 0;
-  auto launch = [&] { running.push_back(std::async(std::launch::async, work, next++)); };
-  if (n > 0) launch();
-  while (!running.empty()) {
-    Item current = running.front().get();
-    running.pop_front();
-    const std::size_t depth = std::max<std::size_t>(1, ahead(current));
-    while (running.size() < depth && next < n) launch();
-    if (!consume(current)) break;
+  struct Slot {
+    std::optional<Item> item;
+    std::exception_ptr error;
+  };
+  std::mutex mutex;
+  std::condition_variable changed;
+  std::deque<Slot> slots;  // results from index `taken` on, in order
+  std::size_t next = 0, taken = 0, running = 0, depth = 1;
+  bool stop = false;
+  // Results waiting for consume (done or under way, from index `taken` on) may be depth + slack.
+  auto mayStart = [&] {
+    const std::size_t slack = depth > 1 ? depth : 0;
+    return next < n && running < depth && next - taken < depth + slack;
+  };
+  auto worker = [&] {
+    std::unique_lock lock(mutex);
+    for (;;) {
+      changed.wait(lock, [&] { return stop || next >= n || mayStart(); });
+      if (stop || next >= n) return;
+      const std::size_t i = next++;
+      ++running;
+      slots.resize(next - taken);
+      lock.unlock();
+      Slot done;
+      try {
+        done.item.emplace(work(i));
+      } catch (...) {
+        done.error = std::current_exception();
+      }
+      lock.lock();
+      --running;
+      if (done.item) depth = std::max<std::size_t>(1, ahead(*done.item));
+      Slot& slot = slots[i - taken];
+      if (done.item) slot.item.emplace(std::move(*done.item));
+      slot.error = done.error;
+      changed.notify_all();
+    }
+  };
+  std::vector<std::thread> threads;
+  auto finish = [&] {
+    {
+      std::lock_guard lock(mutex);
+      stop = true;
+    }
+    changed.notify_all();
+    for (std::thread& t : threads) t.join();
+  };
+  // Enough threads for what may run now (each takes the next index when it may start).
+  auto spawn = [&] {
+    while (threads.size() < std::min(depth, n)) threads.emplace_back(worker);
+  };
+  try {
+    while (taken < n) {
+      Slot current;
+      {
+        std::unique_lock lock(mutex);
+        spawn();
+        changed.wait(lock, [&] { return !slots.empty() && (slots.front().item || slots.front().error); });
+        if (slots.front().item) current.item.emplace(std::move(*slots.front().item));
+        current.error = slots.front().error;
+        slots.pop_front();
+        ++taken;
+        spawn();
+        changed.notify_all();
+      }
+      if (current.error) std::rethrow_exception(current.error);
+      if (!consume(*current.item)) break;
+    }
+  } catch (...) {
+    finish();
+    throw;
   }
+  finish();
 }
 
 }  // namespace probelights
