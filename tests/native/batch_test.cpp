@@ -2,6 +2,8 @@
 // consume that stalls while the works go on, a stop, and a work's exception. Synchronized with condition
 // variables, not with time: a bound is checked on every work; a wait is bounded only so that a broken
 // pipeline fails instead of hanging.
+#include "probelights/batch.h"
+
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -9,8 +11,6 @@
 #include <mutex>
 #include <stdexcept>
 #include <vector>
-
-#include "probelights/batch.h"
 
 namespace probelights {
 namespace {
