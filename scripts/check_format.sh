@@ -4,7 +4,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 command -v clang-format >/dev/null || { echo "clang-format is missing: scripts/install-deps.sh --test"; exit 1; }
-mapfile -t files < <(git ls-files 'native/*.cpp' 'native/*.h' 'tests/native/*.cpp' 'tests/native/*.h')
+mapfile -t files < <(git ls-files --cached --others --exclude-standard 'native/*.cpp' 'native/*.h' 'tests/native/*.cpp' 'tests/native/*.h')
 clang-format --dry-run --Werror "${files[@]}"
 long=$(awk 'length($0) > 110 {print FILENAME ":" FNR}' "${files[@]}")
 if [[ -n $long ]]; then echo "lines over 110 columns:"; echo "$long"; exit 1; fi
