@@ -66,12 +66,25 @@ def _pools(scene):
     return sorted(int(item.identifier) for item in items)
 
 
-def _wanted(scene):
+def _wanted(scene, suns=None):
     """{setting: value}: the smallest pool (no smaller than the scene's, at most 1 GB) that holds the baked suns'
-    pages at the scene's shadow resolution, else at half or a quarter of it; {} when the pool already holds them."""
+    pages at the scene's shadow resolution, else at half or a quarter of it; {} when the pool already holds them.
+    Given the count of baked suns, it answers from their fewest and most pages (every sun at the horizon, or
+    overhead) when both give the same answer, as they do for a few suns or thousands (the answer grows with the
+    pages, so the suns' own pages give it too): the panel asks on every redraw, and reading the elevations of
+    4,096 suns took 26 ms."""
+    if suns is not None:
+        extra = PAGES_AT_HORIZON + PAGES_PER_SINE if has_residual(scene.world) else 0.0
+        fewest = _wanted_for(scene, suns * PAGES_AT_HORIZON + extra)
+        if fewest == _wanted_for(scene, suns * (PAGES_AT_HORIZON + PAGES_PER_SINE) + extra):
+            return fewest
+    return _wanted_for(scene, sun_pages(scene))
+
+
+def _wanted_for(scene, load):
+    """_wanted for suns that need `load` pages at shadow resolution scale 1."""
     eevee = scene.eevee
     scale = eevee.shadow_resolution_scale
-    load = sun_pages(scene)
     if _pages(load, scale) <= int(eevee.shadow_pool_size) * PAGES_PER_MB:
         return {}
     pool = int(eevee.shadow_pool_size)
@@ -89,7 +102,7 @@ def _wanted(scene):
 def advice(scene, suns):
     """One line on what the shadow pool lacks for the `suns` baked suns, or '' when it holds them (or the engine is
     not EEVEE Next)."""
-    if not _eevee_next(scene) or suns < 2 or not _wanted(scene):
+    if not _eevee_next(scene) or suns < 2 or not _wanted(scene, suns):
         return ""
     return ("EEVEE's shadow pool is too small for %d suns and drops shadows at random: fit the shadows to the lamps"
             % suns)
@@ -127,7 +140,7 @@ def follow(scene):
     if not _eevee_next(scene):
         return {}
     suns = baked_suns(scene)
-    if suns < 2 or not _wanted(scene):
+    if suns < 2 or not _wanted(scene, suns):
         return {}
     return apply(scene)
 

@@ -138,5 +138,36 @@ def test_sharp_suns_of_the_sources_fit_the_shadow_pool():
     scene.render.engine = "CYCLES"
 
 
+def test_the_panels_count_of_suns_gives_the_fit_their_elevations_give():
+    """The panel asks for the fit on every redraw from the count of baked suns, and reads their elevations only
+    when the count alone cannot tell (eevee_settings._wanted): its answer must be the elevations' own, for few and
+    many suns, with and without a residual world, at every pool size and shadow resolution."""
+    if bpy.app.version < (4, 2, 0):
+        print("  skipped: EEVEE Legacy (Blender %s) has no shadow pool" % bpy.app.version_string)
+        return
+    harness.empty_scene()
+    shadows = harness.addon_module("eevee_settings")
+    shadows.restore(bpy.context.scene)
+    harness.env_world(bpy.data.images.load(harness.BUNDLED_PROBE))
+    scene = bpy.context.scene
+    scene.render.engine = harness.eevee_engine()
+    answers = set()
+    for count, take in ((2, "SOURCES"), (8, "SOURCES"), (24, "SOURCES"), (300, "ALL")):
+        assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=count, lamps_take=take) == {"FINISHED"}
+        shadows.restore(scene)
+        suns = shadows.baked_suns(scene)
+        for pool in sorted(shadows._pools(scene)):
+            for scale in (1.0, 0.5, 0.25):
+                scene.eevee.shadow_pool_size, scene.eevee.shadow_resolution_scale = str(pool), scale
+                exact = shadows._wanted(scene)
+                assert shadows._wanted(scene, suns) == exact, (count, take, pool, scale, exact)
+                answers.add(tuple(sorted(exact.items())))
+    assert len(answers) >= 4, answers  # fits of every kind were asked: none, a pool, a resolution, both
+    print("  %d fits, each the same from the count as from the elevations" % len(answers))
+    scene.eevee.shadow_pool_size, scene.eevee.shadow_resolution_scale = "512", 1.0
+    scene.render.engine = "CYCLES"
+
+
 harness.run([test_world_mix_in_eevee, test_baked_under_cycles_renders_right_in_eevee,
-             test_sharp_suns_of_the_sources_fit_the_shadow_pool])
+             test_sharp_suns_of_the_sources_fit_the_shadow_pool,
+             test_the_panels_count_of_suns_gives_the_fit_their_elevations_give])
