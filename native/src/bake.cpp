@@ -94,6 +94,7 @@ EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOpt
   out.sunAngles = a.sunAngles == SunAngles::Fit && !(a.effects & kShadow) ? SunAngles::Spread : a.sunAngles;
   out.sunProfile = a.sunProfile;
   out.errors = evaluator.evaluate(out.bake.lights);
+  out.truthNorms = evaluator.truthNorms();
   return out;
 }
 

@@ -237,7 +237,7 @@ EvaluatedBake bakeSources(const Probe& probe, const BakeRequest& request) {
   EvaluatedBake ev = bakeEvaluated(sources, request.bake, request.accuracy);
   if (ev.evaluated) {
     const EvaluatorOptions options{request.accuracy.evaluatorWidth, false, ev.sunProfile};
-    const EffectErrors part = Evaluator(sources, ev.effects, options).truthNorms();
+    const EffectErrors& part = ev.truthNorms;  // the sources' own, from the bake's evaluator
     const EffectErrors whole = Evaluator(probe, ev.effects, options).truthNorms();
     auto scale = [](double error, double p, double w) { return w > 0 ? error * p / w : error; };
     ev.errors.diffuse = scale(ev.errors.diffuse, part.diffuse, whole.diffuse);

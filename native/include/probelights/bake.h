@@ -45,7 +45,8 @@ struct EvaluatedBake {
   bool evaluated = false, autoCount = false, met = false, refit = false;
   Effects effects;
   EffectErrors errors;
-  double energyShift = 0;                    // of the refit
+  EffectErrors truthNorms;  // when evaluated: the probe's own response per effect (Evaluator::truthNorms)
+  double energyShift = 0;   // of the refit
   SunAngles sunAngles = SunAngles::Spread;   // what the lights' angles are: fit only when they were fitted
   SunProfile sunProfile = SunProfile::Cone;  // the sun they were judged as
   int count = 0;  // the light count asked for, or chosen when autoCount (bake.lights may hold fewer)
