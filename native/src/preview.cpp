@@ -69,9 +69,14 @@ void writePreview(const Probe& probe, const BakeResult& result, const std::strin
   const float border[3] = {0.15f, 0.9f, 0.25f}, lightColour[3] = {1.0f, 0.1f, 0.1f};
   auto sx = [&](int x) { return static_cast<int>(static_cast<int64_t>(x) * pw / W); };
   auto sy = [&](int y) { return static_cast<int>(static_cast<int64_t>(y) * ph / H); };
-  for (const Rect& r : result.regionsAreRects ? result.regions : std::vector<Rect>{})
-    OIIO::ImageBufAlgo::render_box(buf, sx(r.x0), sy(r.y0), std::max(sx(r.x0), sx(r.x1) - 1),
+  auto box = [&](int x0, int x1, const Rect& r) {
+    OIIO::ImageBufAlgo::render_box(buf, sx(x0), sy(r.y0), std::max(sx(x0), sx(x1) - 1),
                                    std::max(sy(r.y0), sy(r.y1) - 1), border, false);
+  };
+  for (const Rect& r : result.regionsAreRects ? result.regions : std::vector<Rect>{}) {
+    box(r.x0, std::min(r.x1, W), r);
+    if (r.x1 > W) box(0, r.x1 - W, r);  // a region of the sources that wraps round the seam (request.cpp)
+  }
   for (const Light& light : result.lights) {
     auto uv = probe.projection().imagePosition(light.direction);
     int cx = static_cast<int>(uv[0] * pw), cy = static_cast<int>(uv[1] * ph);

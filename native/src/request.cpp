@@ -221,6 +221,28 @@ bool readsIntoGridAlone(const BakeRequest& request) {
 
 namespace {
 
+// A bake of the sources rolled by `seam` columns (sources.h: rollColumns) turned back to the probe's frame:
+// directions turned by the roll's angle about Z, regions moved right by `seam` columns. A region the probe's
+// own edge runs through keeps x0 < width < x1: it wraps round (columns x0 .. x1 - 1 mod the width).
+void turnBack(BakeResult& bake, int seam, int width) {
+  const double turn = -2 * kPi * seam / width, c = std::cos(turn), s = std::sin(turn);
+  auto move = [&](Rect& r) {
+    const int shift = r.x0 + seam >= width ? seam - width : seam;
+    r.x0 += shift, r.x1 += shift;
+  };
+  for (Light& l : bake.lights) {
+    const Vec3 d = l.direction;
+    l.direction = {c * d.x - s * d.y, s * d.x + c * d.y, d.z};
+    move(l.rect);
+  }
+  for (Rect& r : bake.regions) move(r);
+  for (PixelCut& cut : bake.cuts) {
+    const int before = cut.region.x0;
+    move(cut.region);
+    if (cut.axis == Axis::X) cut.position += cut.region.x0 - before;
+  }
+}
+
 // Lamps for the probe's sources (sources.h): the split, the bake of the sources alone as a probe of their
 // own, and its errors turned into those of lamps plus residual against the whole probe. The residual's own
 // light is exact (the world renders it), so what is left is the lamps' against the sources': each effect's
@@ -233,8 +255,12 @@ EvaluatedBake bakeSources(const Probe& probe, const BakeRequest& request) {
   if (request.accuracy.maxError > 0)
     throw Error("with source_level or source_share, choose the lamps' count (lights), not max_error");
   SourceSplit split = splitSources(probe, request.sources);
+  const bool latLong = probe.projection().kind() == ProjectionKind::LatLong;
+  const int seam = latLong ? darkestSeam(probe, *split.sources) : 0;
+  rollColumns(*split.sources, seam);
   const Probe sources(split.sources->view(), probe.projection().kind(), NonFinitePolicy::Error);
   EvaluatedBake ev = bakeEvaluated(sources, request.bake, request.accuracy);
+  if (seam != 0) turnBack(ev.bake, seam, probe.width());
   if (ev.evaluated) {
     const EvaluatorOptions options{request.accuracy.evaluatorWidth, false, ev.sunProfile};
     const EffectErrors& part = ev.truthNorms;  // the sources' own, from the bake's evaluator

@@ -136,4 +136,32 @@ SourceSplit splitSources(const Probe& probe, const SourceLevel& how) {
   return out;
 }
 
+int darkestSeam(const Probe& probe, const Image& sources) {
+  const int W = sources.width, H = sources.height;
+  std::vector<double> column(W, 0.0);
+  std::vector<Vec3> dirs;
+  std::vector<double> omega;
+  for (int y = 0; y < H; ++y) {
+    rowSolidAngles(probe, y, dirs, omega);
+    const float* row = sources.pixels.get() + static_cast<std::size_t>(y) * W * 3;
+    for (int x = 0; x < W; ++x)
+      column[x] += std::abs(luminance(row[3 * x], row[3 * x + 1], row[3 * x + 2])) * omega[x];
+  }
+  int best = 0;
+  double least = column[W - 1] + column[0];
+  for (int b = 1; b < W; ++b)
+    if (const double e = column[b - 1] + column[b]; e < least) least = e, best = b;
+  return best;
+}
+
+void rollColumns(Image& image, int b) {
+  const int W = image.width, C = image.channels;
+  if (W <= 0 || (b %= W) == 0) return;
+  if (b < 0) b += W;
+  parallelFor(image.height, [&](std::int64_t y) {
+    float* row = image.pixels.get() + static_cast<std::size_t>(y) * W * C;
+    std::rotate(row, row + static_cast<std::size_t>(b) * C, row + static_cast<std::size_t>(W) * C);
+  });
+}
+
 }  // namespace probelights

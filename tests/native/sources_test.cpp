@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "probelights/error.h"
@@ -32,11 +33,13 @@ testing::TestProbe twoSuns(int axis = 0) {
   });
 }
 
-// Sum of value x solid angle over pixels [x0, x1) x [y0, y1) of an RGB image of the probe's size.
+// Sum of value x solid angle over pixels [x0, x1) x [y0, y1) of an RGB image of the probe's size (columns
+// mod the width: a region of the sources may wrap round the seam).
 Rgb regionSum(const Probe& probe, const float* pixels, const Rect& r) {
   Rgb s{};
   for (int y = r.y0; y < r.y1; ++y)
-    for (int x = r.x0; x < r.x1; ++x) {
+    for (int xx = r.x0; xx < r.x1; ++xx) {
+      const int x = xx % probe.width();
       const double w = probe.projection().pixelSolidAngle(x, y);
       for (int c = 0; c < 3; ++c)
         s[c] += pixels[(static_cast<std::size_t>(y) * probe.width() + x) * 3 + c] * w;
@@ -93,17 +96,43 @@ TEST(Sources, TwoOppositeSunsStayTwoLampsAndEachRegionGivesBackTheProbe) {
   }
 }
 
-// A sun on the lat-long image's seam (-X: phi = pi) is cut in two by the image's edges, and a region of the
-// rectangles that the cuts make cannot wrap round: with two lamps each would hold half of it with half of the
-// other sun (and shine from the brighter one). With three, every lamp is at one of the suns, none between.
-TEST(Sources, ASunOnTheSeamTakesALampEachSide) {
-  const auto p = twoSuns(0);
+// A sun on the lat-long image's seam (-X: phi = pi) would be cut in two by the image's edges (a region of the
+// rectangles the cuts make cannot wrap round), a lamp each side with half the disc's angle. The lamps are
+// cut on the sources rolled to their darkest column (sources.h: darkestSeam), so the seam's sun gets one
+// lamp, the same lamp as the same sun a quarter turn away (twoSuns(1)'s -Y sun: the same pixels, 64 columns
+// over), its fitted angle included, and its region, which wraps round, gives back the probe's light with
+// the residual.
+TEST(Sources, ASunOnTheSeamTakesOneLampAsItWouldAnywhereElse) {
+  const auto seam = twoSuns(0), away = twoSuns(1);
   BakeRequest request;
-  request.bake.lights = 3;
+  request.bake.lights = 2;
   request.sources = {10, 0};
-  const EvaluatedBake ev = bakeLoaded(p.probe, request);
-  ASSERT_EQ(ev.bake.lights.size(), 3u);
-  for (const Light& l : ev.bake.lights) EXPECT_GT(std::abs(l.direction.x), 0.99) << l.direction.x;
+  request.accuracy.evaluate = true;
+  request.accuracy.effects = kDiffuse | kShadow;
+  EXPECT_EQ(darkestSeam(away.probe, *splitSources(away.probe, {10, 0}).sources), 0);  // cut as before
+  EXPECT_NE(darkestSeam(seam.probe, *splitSources(seam.probe, {10, 0}).sources), 0);
+  const EvaluatedBake a = bakeLoaded(seam.probe, request), b = bakeLoaded(away.probe, request);
+  ASSERT_EQ(a.bake.lights.size(), 2u);
+  ASSERT_EQ(b.bake.lights.size(), 2u);
+  const int W = seam.probe.width();
+  for (const Light& l : a.bake.lights) {
+    EXPECT_GT(std::abs(l.direction.x), 0.99) << l.direction.x;
+    const bool behind = l.direction.x < 0;
+    const Light& twin = *std::find_if(b.bake.lights.begin(), b.bake.lights.end(), [&](const Light& m) {
+      return (m.direction.y < 0) == behind;  // -X here is -Y there, +X is +Y
+    });
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(l.rgb[c], twin.rgb[c], 1e-9 * twin.rgb[c]) << c;
+    EXPECT_NEAR(l.angle, twin.angle, 1e-6) << l.angle << " " << twin.angle;
+    EXPECT_TRUE(l.rect.x0 >= 0 && l.rect.x0 < W && l.rect.x1 > l.rect.x0 && l.rect.x1 <= l.rect.x0 + W);
+    if (behind) EXPECT_GT(l.rect.x1, W) << "the seam's sun's region wraps round";
+    const Rgb r = regionSum(seam.probe, a.sources->residual->pixels.get(), l.rect);
+    const Rgb whole = regionSum(seam.probe, seam.pixels->data(), l.rect);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(r[c] + l.rgb[c], whole[c], 1e-9 * whole[c]) << c;
+  }
+  // Cut on the image's own edges the two lamps came out both at +X, the seam's sun split between them
+  // (shadow error 73 %); now 3.05 % against 2.85 % a quarter turn away (the evaluator's directions are fixed
+  // in the world, so a turned probe is judged on other samples).
+  EXPECT_NEAR(a.errors.shadow, b.errors.shadow, 0.1 * b.errors.shadow);
 }
 
 TEST(Sources, AShareFindsItsLevel) {

@@ -31,7 +31,7 @@ struct Light {
   // direction. Made from the spread (angularRadius; see lights.cpp), fitted to the probe's shadows when they
   // are evaluated (sun_angles.h). The evaluator models the light as this cone (cone.h).
   double angle = 0;
-  Rect rect;               // the region, in pixels
+  Rect rect;  // the region, in pixels; a lamp of a lat-long probe's sources may wrap round: x1 > width
   double energyShare = 0;  // the region's luminance energy / the probe's
 };
 

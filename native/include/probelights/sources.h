@@ -35,7 +35,7 @@ struct SourceLevel {
 
 struct SourceSplit {
   std::shared_ptr<const Image> residual;  // R, RGB float, the probe's size and projection
-  std::shared_ptr<const Image> sources;   // X = L - R, RGB float
+  std::shared_ptr<Image> sources;         // X = L - R, RGB float (the lamps' bake rolls it: rollColumns)
   double level = 0;                       // T, in the probe's units (luminance)
   double meanLuminance = 0;               // the probe's luminous energy over 4 pi
   double share = 0;                       // the sources' share of the probe's luminous energy
@@ -44,5 +44,18 @@ struct SourceSplit {
 
 // Throws Error for a knob that is not exactly one value > 0 (a share below 1).
 SourceSplit splitSources(const Probe& probe, const SourceLevel& how);
+
+// The cuts that share the sources among lamps are rectangles of the image, and on a lat-long image they do
+// not wrap round its left and right edges: a sun on the seam (straight behind, phi = pi) would be cut in
+// two, a lamp each side, each with half a disc's fitted angle. So the lamps are cut on the sources rolled
+// round the vertical axis, the seam moved to where they are darkest: the boundary b (between columns b - 1
+// and b, mod the width) whose two columns carry the least of the sources' light, |Y| dw summed down each
+// column. 0 (the image's own edge) when it is as dark as any, so a probe whose sources keep off the edge is
+// cut as it was.
+int darkestSeam(const Probe& probe, const Image& sources);
+
+// In place: column x of the image becomes column (x + b) mod width, a turn of the lat-long sphere by
+// -2 pi b / width about Z (a direction's phi = 2 pi (0.5 - u) falls by that much).
+void rollColumns(Image& image, int b);
 
 }  // namespace probelights
