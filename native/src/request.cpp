@@ -255,8 +255,7 @@ EvaluatedBake bakeSources(const Probe& probe, const BakeRequest& request) {
   if (request.accuracy.maxError > 0)
     throw Error("with source_level or source_share, choose the lamps' count (lights), not max_error");
   SourceSplit split = splitSources(probe, request.sources);
-  const bool latLong = probe.projection().kind() == ProjectionKind::LatLong;
-  const int seam = latLong ? darkestSeam(probe, *split.sources) : 0;
+  const int seam = darkestSeam(probe, *split.sources);
   rollColumns(*split.sources, seam);
   const Probe sources(split.sources->view(), probe.projection().kind(), NonFinitePolicy::Error);
   EvaluatedBake ev = bakeEvaluated(sources, request.bake, request.accuracy);

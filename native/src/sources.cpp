@@ -137,16 +137,26 @@ SourceSplit splitSources(const Probe& probe, const SourceLevel& how) {
 }
 
 int darkestSeam(const Probe& probe, const Image& sources) {
+  if (probe.projection().kind() != ProjectionKind::LatLong) return 0;  // no seam: the others are discs
   const int W = sources.width, H = sources.height;
+  // Down each column in bands of rows, a band's sums per thread, then the bands added in order: the same
+  // bits whatever the thread count. A lat-long row's pixels share one solid angle.
+  constexpr int kBand = 64;
+  const int bands = (H + kBand - 1) / kBand;
+  std::vector<std::vector<double>> bandSums(bands);
+  parallelFor(bands, [&](std::int64_t b) {
+    std::vector<double> sums(W, 0.0);
+    for (int y = static_cast<int>(b) * kBand; y < std::min(H, static_cast<int>(b + 1) * kBand); ++y) {
+      const double omega = probe.projection().pixelSolidAngle(0, y);
+      const float* row = sources.pixels.get() + static_cast<std::size_t>(y) * W * 3;
+      for (int x = 0; x < W; ++x)
+        sums[x] += std::abs(luminance(row[3 * x], row[3 * x + 1], row[3 * x + 2])) * omega;
+    }
+    bandSums[b] = std::move(sums);
+  });
   std::vector<double> column(W, 0.0);
-  std::vector<Vec3> dirs;
-  std::vector<double> omega;
-  for (int y = 0; y < H; ++y) {
-    rowSolidAngles(probe, y, dirs, omega);
-    const float* row = sources.pixels.get() + static_cast<std::size_t>(y) * W * 3;
-    for (int x = 0; x < W; ++x)
-      column[x] += std::abs(luminance(row[3 * x], row[3 * x + 1], row[3 * x + 2])) * omega[x];
-  }
+  for (const auto& sums : bandSums)
+    for (int x = 0; x < W; ++x) column[x] += sums[x];
   int best = 0;
   double least = column[W - 1] + column[0];
   for (int b = 1; b < W; ++b)

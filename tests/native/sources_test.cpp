@@ -124,7 +124,9 @@ TEST(Sources, ASunOnTheSeamTakesOneLampAsItWouldAnywhereElse) {
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(l.rgb[c], twin.rgb[c], 1e-9 * twin.rgb[c]) << c;
     EXPECT_NEAR(l.angle, twin.angle, 1e-6) << l.angle << " " << twin.angle;
     EXPECT_TRUE(l.rect.x0 >= 0 && l.rect.x0 < W && l.rect.x1 > l.rect.x0 && l.rect.x1 <= l.rect.x0 + W);
-    if (behind) EXPECT_GT(l.rect.x1, W) << "the seam's sun's region wraps round";
+    if (behind) {
+      EXPECT_GT(l.rect.x1, W) << "the seam's sun's region wraps round";
+    }
     const Rgb r = regionSum(seam.probe, a.sources->residual->pixels.get(), l.rect);
     const Rgb whole = regionSum(seam.probe, seam.pixels->data(), l.rect);
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(r[c] + l.rgb[c], whole[c], 1e-9 * whole[c]) << c;

@@ -51,7 +51,7 @@ SourceSplit splitSources(const Probe& probe, const SourceLevel& how);
 // round the vertical axis, the seam moved to where they are darkest: the boundary b (between columns b - 1
 // and b, mod the width) whose two columns carry the least of the sources' light, |Y| dw summed down each
 // column. 0 (the image's own edge) when it is as dark as any, so a probe whose sources keep off the edge is
-// cut as it was.
+// cut as it was, and 0 for the projections that are discs (mirror ball, angular).
 int darkestSeam(const Probe& probe, const Image& sources);
 
 // In place: column x of the image becomes column (x + b) mod width, a turn of the lat-long sphere by
