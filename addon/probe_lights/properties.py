@@ -28,7 +28,9 @@ COUNT_MODES = [("COUNT", "Count", "Make this many lights"),
 LAMPS_TAKE = [("ALL", "All of the light", "The lamps light the scene in place of the world (for the effects below)"),
               ("SOURCES", "The bright sources", "The lamps take only the world's bright sources (the sun, lamps in "
                                                 "it) and cast their shadows; the world keeps the rest of its light, "
-                                                "nothing counted twice. Closest in Cycles on glossy materials")]
+                                                "nothing counted twice. Closest in Cycles on glossy materials; in "
+                                                "EEVEE the world's part casts no shadows, so All of the light is "
+                                                "closer there")]
 NON_FINITE = [("error", "Stop", "Stop with an error naming how many NaN/Inf samples the image has"),
               ("zero", "Zero", "Read NaN/Inf samples as 0 (black) and say how many")]
 
