@@ -16,7 +16,6 @@ world's light in EEVEE over Cycles' (its sum over the blocks).
 
 (NAME: probe file names without their extension, e.g. pmndrs_esplanade_dwab,forest; all 15 by default)
 """
-import glob
 import os
 import sys
 
@@ -30,11 +29,7 @@ import render_scene  # noqa: E402
 
 zip_path, shared, rest = harness.bench_argv()
 harness.install_addon(zip_path)
-studio = bpy.utils.system_resource("DATAFILES", path="studiolights/world")
-PROBES = [harness.BUNDLED_PROBE]
-PROBES += [p for p in sorted(glob.glob(os.path.join(shared, "hdri", "*"))) if p.endswith((".hdr", ".exr"))
-           and os.path.basename(p) != os.path.basename(harness.BUNDLED_PROBE)]
-PROBES += sorted(glob.glob(os.path.join(studio, "*.exr")))
+PROBES = harness.bench_probes(shared)
 if rest:
     names = rest[0].split(",")
     PROBES = [p for p in PROBES if os.path.splitext(os.path.basename(p))[0] in names]

@@ -15,7 +15,6 @@ render_scene.block_difference's: 8x8 blocks of lit pixels, mean |render - refere
 
 (16 lamps in (b), 32 EEVEE samples, 16 lamps in (c) by default; the Cycles renders take 8 times as many samples)
 """
-import glob
 import os
 import sys
 import time
@@ -32,11 +31,7 @@ lamps = int(rest[0]) if rest else 16
 samples = int(rest[1]) if len(rest) > 1 else 32
 SOURCE_LAMPS = int(rest[2]) if len(rest) > 2 else 16
 harness.install_addon(zip_path)
-studio = bpy.utils.system_resource("DATAFILES", path="studiolights/world")
-PROBES = [harness.BUNDLED_PROBE]
-PROBES += [p for p in sorted(glob.glob(os.path.join(shared, "hdri", "*"))) if p.endswith((".hdr", ".exr"))
-           and os.path.basename(p) != os.path.basename(harness.BUNDLED_PROBE)]
-PROBES += sorted(glob.glob(os.path.join(studio, "*.exr")))
+PROBES = harness.bench_probes(shared)
 W, H = 160, 120
 
 

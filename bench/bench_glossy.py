@@ -13,7 +13,6 @@ Camera Ray, the world's ray visibility left on), and the lamps of the bright sou
 
 (256 Cycles samples by default, 192x96 pixels, 4 bounces)
 """
-import glob
 import os
 import sys
 
@@ -27,9 +26,7 @@ import render_scene  # noqa: E402
 zip_path, shared, rest = harness.bench_argv()
 samples = int(rest[0]) if rest else 256
 harness.install_addon(zip_path)
-PROBES = [harness.BUNDLED_PROBE]
-PROBES += [p for p in sorted(glob.glob(os.path.join(shared, "hdri", "*"))) if p.endswith((".hdr", ".exr"))
-           and os.path.basename(p) != os.path.basename(harness.BUNDLED_PROBE)]
+PROBES = harness.bench_probes(shared, studio_lights=False)
 ROWS = (("ALL", 16), ("ALL", 64), ("BEFORE", 64), ("SOURCES", 16), ("SOURCES", 64))
 
 

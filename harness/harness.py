@@ -8,6 +8,7 @@ Run a test file alone, in Debian's Blender or in a bpy module's Python (scripts/
 """
 
 import argparse
+import glob
 import importlib
 import math
 import os
@@ -51,6 +52,19 @@ def bench_args(samples=256):
     """The arguments of the bench/bench_*.py scripts: the zip, then optionally a probe and a sample count."""
     zip_path, _, rest = bench_argv()
     return zip_path, (rest[0] if rest else BUNDLED_PROBE), (int(rest[1]) if len(rest) > 1 else samples)
+
+
+def bench_probes(shared, studio_lights=True):
+    """The probes a bench runs over: the bundled one, ../shared/hdri's (`shared`, "" for none) and, with
+    `studio_lights`, the running Blender's own 8 studio lights: 15 with ../shared."""
+    probes = [BUNDLED_PROBE]
+    if shared:
+        probes += [p for p in sorted(glob.glob(os.path.join(shared, "hdri", "*"))) if p.endswith((".hdr", ".exr"))
+                   and os.path.basename(p) != os.path.basename(BUNDLED_PROBE)]
+    if studio_lights:
+        probes += sorted(glob.glob(os.path.join(
+            bpy.utils.system_resource("DATAFILES", path="studiolights/world"), "*.exr")))
+    return probes
 
 
 def studiolights(a):
