@@ -7,9 +7,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "probelights/error.h"
 #include "probelights/image_file.h"
+#include "probelights/preview.h"
 #include "probelights/request.h"
 #include "test_probes.h"
 
@@ -135,6 +138,37 @@ TEST(Sources, ASunOnTheSeamTakesOneLampAsItWouldAnywhereElse) {
   // (shadow error 73 %); now 3.05 % against 2.85 % a quarter turn away (the evaluator's directions are fixed
   // in the world, so a turned probe is judged on other samples).
   EXPECT_NEAR(a.errors.shadow, b.errors.shadow, 0.1 * b.errors.shadow);
+}
+
+// The preview draws a region that wraps round the seam on both edges: its right border is where its columns
+// end past the width, wrapped to the left edge (cut on the image's own edges, no region drew a line there).
+TEST(Sources, ThePreviewDrawsAWrappedRegionOnBothEdges) {
+  const auto p = twoSuns(0);
+  BakeRequest request;
+  request.bake.lights = 2;
+  request.sources = {10, 0};
+  const EvaluatedBake ev = bakeLoaded(p.probe, request);
+  const int W = p.probe.width(), H = p.probe.height();
+  const auto wrapped =
+      std::find_if(ev.bake.regions.begin(), ev.bake.regions.end(), [&](const Rect& r) { return r.x1 > W; });
+  ASSERT_NE(wrapped, ev.bake.regions.end());
+  const std::string path = ::testing::TempDir() + "wrapped_preview.png";
+  writePreview(p.probe, ev.bake, path);
+  const Image png = readImage(path);
+  std::remove(path.c_str());
+  ASSERT_EQ(png.width * H, png.height * W);
+  const int column = static_cast<int>(static_cast<std::int64_t>(wrapped->x1 - W) * png.width / W) - 1;
+  ASSERT_GE(column, 0);
+  int green = 0, rows = 0;
+  for (int y = wrapped->y0 * png.height / H + 1; y < wrapped->y1 * png.height / H - 1; ++y) {
+    if (std::abs(y - png.height / 2) < 12)
+      continue;  // the suns' red squares on the horizon are drawn over it
+    const float* px = png.pixels.get() + (static_cast<std::size_t>(y) * png.width + column) * png.channels;
+    green += px[1] > 0.5f && px[0] < 0.5f && px[2] < 0.5f;
+    ++rows;
+  }
+  EXPECT_GT(rows, 10);
+  EXPECT_EQ(green, rows) << "column " << column;
 }
 
 TEST(Sources, AShareFindsItsLevel) {
