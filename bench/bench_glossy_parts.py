@@ -1,0 +1,85 @@
+"""docs/glossy.md's split of the default bake's difference on glossy materials (issue 30): how much of it Cycles makes
+of the world's own light split by ray visibility, with no lamps at all. The scene is bench_glossy.py's (Blender's
+default Principled BSDF at roughness 0.2, 0.5 and 1.0, render_scene.glossy_spheres); for each probe it renders
+  full  the world lit by every ray;                 noise  the same with another seed;
+  D     the world seen by the camera and diffuse and volume rays (glossy and transmission off);
+  G     the world seen by glossy and transmission rays only;
+  split the add-on's default bake, 64 lamps (Lamps take: All of the light: lamps for diffuse light, the world's
+        visibility left to reflections);
+  L     the same lamps with the world hidden from every ray but the camera's: the lamps alone;
+and prints, each a third of the picture against its reference (render_scene.block_difference, %): noise; D + G
+against full (what Cycles' own split of the world costs); the default bake against full; L + G against full (the
+lamps and the world's reflections rendered apart); L against D (the lamps against the world's diffuse light).
+
+    tests/blender/run.sh ~/.cache/probelights/bpy-4.5.15/bin/python bench/bench_glossy_parts.py \\
+        build/probe_lights-0.1.0-linux_x64.zip ../shared [NAME,NAME,...]
+
+(256 Cycles samples, 192x96 pixels, 4 bounces; NAME: probe file names without their extension)
+"""
+import os
+import sys
+
+import bpy
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "harness"))
+import harness  # noqa: E402
+import render_scene  # noqa: E402
+
+zip_path, shared, rest = harness.bench_argv()
+harness.install_addon(zip_path)
+SAMPLES = 256
+names = rest[0].split(",") if rest else None
+PROBES = [p for p in harness.bench_probes(shared, studio_lights=False)
+          if names is None or os.path.splitext(os.path.basename(p))[0] in names]
+RAYS = ("camera", "diffuse", "glossy", "transmission", "scatter")
+
+
+def thirds_difference(reference, other):
+    return " / ".join("%.2f" % (100 * render_scene.block_difference(a, b)[0])
+                      for a, b in zip(render_scene.thirds(reference), render_scene.thirds(other)))
+
+
+def visible_to(world, *rays):
+    for ray in RAYS:
+        setattr(world.cycles_visibility, ray, ray in rays)
+
+
+def added(a, b):
+    out = a.copy()
+    out[..., :3] = a[..., :3] + b[..., :3]
+    return out
+
+
+print("| probe | noise (seed 2) | world split by visibility, D + G | default bake, 64 lamps | lamps alone + G | "
+      "lamps alone against D |")
+print("|---|---|---|---|---|---|")
+for probe in PROBES:
+    harness.empty_scene()
+    harness.env_world(bpy.data.images.load(probe))
+    render_scene.glossy_spheres(3 * 64, 96, SAMPLES)
+    scene = bpy.context.scene
+    world = scene.world
+    full = render_scene.render()
+    scene.cycles.seed = 2
+    noise = render_scene.render()
+    scene.cycles.seed = 1
+    visible_to(world, "camera", "diffuse", "scatter")
+    d = render_scene.render()
+    visible_to(world, "glossy", "transmission")
+    g = render_scene.render()
+    visible_to(world, *RAYS)
+    assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=64, lamps_take="ALL") == {"FINISHED"}
+    split = render_scene.render()
+    kept = {ray: getattr(world.cycles_visibility, ray) for ray in RAYS}
+    visible_to(world, *[ray for ray in RAYS if kept[ray] and ray not in ("glossy", "transmission")])
+    lamps = render_scene.render()
+    visible_to(world, *[ray for ray in RAYS if kept[ray]])
+    print("| %s | %s | %s | %s | %s | %s |" % (
+        os.path.basename(probe), thirds_difference(full, noise), thirds_difference(full, added(d, g)),
+        thirds_difference(full, split), thirds_difference(full, added(lamps, g)), thirds_difference(d, lamps)),
+        flush=True)
+print("Blender %s, %d Cycles samples; each cell: roughness %s, %% from its reference" % (
+    bpy.app.version_string, SAMPLES, " / ".join("%g" % r for r in render_scene.ROUGHNESS)))
+sys.stdout.flush()
+os._exit(0)  # as the other benches: bpy's teardown is not needed
