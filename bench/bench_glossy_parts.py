@@ -12,9 +12,9 @@ against full (what Cycles' own split of the world costs); the default bake again
 lamps and the world's reflections rendered apart); L against D (the lamps against the world's diffuse light).
 
     tests/blender/run.sh ~/.cache/probelights/bpy-4.5.15/bin/python bench/bench_glossy_parts.py \\
-        build/probe_lights-0.1.0-linux_x64.zip ../shared [NAME,NAME,...]
+        build/probe_lights-0.1.0-linux_x64.zip ../shared [NAME,NAME,... [SAMPLES]]
 
-(256 Cycles samples, 192x96 pixels, 4 bounces; NAME: probe file names without their extension)
+(256 Cycles samples by default, 192x96 pixels, 4 bounces; NAME: probe file names without their extension, or "all")
 """
 import os
 import sys
@@ -28,8 +28,8 @@ import render_scene  # noqa: E402
 
 zip_path, shared, rest = harness.bench_argv()
 harness.install_addon(zip_path)
-SAMPLES = 256
-names = rest[0].split(",") if rest else None
+SAMPLES = int(rest[1]) if len(rest) > 1 else 256
+names = rest[0].split(",") if rest and rest[0] != "all" else None
 PROBES = [p for p in harness.bench_probes(shared, studio_lights=False)
           if names is None or os.path.splitext(os.path.basename(p))[0] in names]
 RAYS = ("camera", "diffuse", "glossy", "transmission", "scatter")
