@@ -45,29 +45,21 @@ def route_by_light_path(world):
         setattr(world.cycles_visibility, ray, True)
 
 
-def thirds_difference(reference, other):
-    return " / ".join("%.2f" % (100 * render_scene.block_difference(a, b)[0])
-                      for a, b in zip(render_scene.thirds(reference), render_scene.thirds(other)))
-
-
 print("| probe | noise (seed 2) | all of the light, 16 | all, 64 | all, 64, Is Glossy Ray (before) | "
       "bright sources + residual, 16 | sources, 64 |")
 print("|---|---|---|---|---|---|---|")
 for probe in PROBES:
-    harness.empty_scene()
-    harness.env_world(bpy.data.images.load(probe))
-    render_scene.glossy_spheres(3 * 64, 96, samples)
-    scene = bpy.context.scene
+    scene = render_scene.glossy_probe_scene(probe, samples)
     reference = render_scene.render()
     scene.cycles.seed = 2
-    cells = [thirds_difference(reference, render_scene.render())]
+    cells = [render_scene.thirds_difference(reference, render_scene.render())]
     scene.cycles.seed = 1
     for take, n in ROWS:
         assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=n, lamps_take=take.replace("BEFORE", "ALL")) == {
             "FINISHED"}
         if take == "BEFORE":
             route_by_light_path(scene.world)
-        cells.append(thirds_difference(reference, render_scene.render()))
+        cells.append(render_scene.thirds_difference(reference, render_scene.render()))
     print("| %s | %s |" % (os.path.basename(probe), " | ".join(cells)), flush=True)
 print("Blender %s, %d Cycles samples; each cell: roughness %s, %% from the world's render" % (
     bpy.app.version_string, samples, " / ".join("%g" % r for r in render_scene.ROUGHNESS)))

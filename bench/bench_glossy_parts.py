@@ -35,11 +35,6 @@ PROBES = [p for p in harness.bench_probes(shared, studio_lights=False)
 RAYS = ("camera", "diffuse", "glossy", "transmission", "scatter")
 
 
-def thirds_difference(reference, other):
-    return " / ".join("%.2f" % (100 * render_scene.block_difference(a, b)[0])
-                      for a, b in zip(render_scene.thirds(reference), render_scene.thirds(other)))
-
-
 def visible_to(world, *rays):
     for ray in RAYS:
         setattr(world.cycles_visibility, ray, ray in rays)
@@ -55,10 +50,7 @@ print("| probe | noise (seed 2) | world split by visibility, D + G | default bak
       "lamps alone against D |")
 print("|---|---|---|---|---|---|")
 for probe in PROBES:
-    harness.empty_scene()
-    harness.env_world(bpy.data.images.load(probe))
-    render_scene.glossy_spheres(3 * 64, 96, SAMPLES)
-    scene = bpy.context.scene
+    scene = render_scene.glossy_probe_scene(probe, SAMPLES)
     world = scene.world
     full = render_scene.render()
     scene.cycles.seed = 2
@@ -75,9 +67,10 @@ for probe in PROBES:
     visible_to(world, *[ray for ray in RAYS if kept[ray] and ray not in ("glossy", "transmission")])
     lamps = render_scene.render()
     visible_to(world, *[ray for ray in RAYS if kept[ray]])
+    diff = render_scene.thirds_difference
     print("| %s | %s | %s | %s | %s | %s |" % (
-        os.path.basename(probe), thirds_difference(full, noise), thirds_difference(full, added(d, g)),
-        thirds_difference(full, split), thirds_difference(full, added(lamps, g)), thirds_difference(d, lamps)),
+        os.path.basename(probe), diff(full, noise), diff(full, added(d, g)), diff(full, split),
+        diff(full, added(lamps, g)), diff(d, lamps)),
         flush=True)
 print("Blender %s, %d Cycles samples; each cell: roughness %s, %% from its reference" % (
     bpy.app.version_string, SAMPLES, " / ".join("%g" % r for r in render_scene.ROUGHNESS)))

@@ -95,6 +95,20 @@ def thirds(image):
     return [image[:, i * w:(i + 1) * w] for i in range(3)]
 
 
+def glossy_probe_scene(probe, samples):
+    """The glossy benches' scene: glossy_spheres at 192 x 96 lit by `probe`'s world alone (an empty scene)."""
+    import harness
+    harness.empty_scene()
+    harness.env_world(bpy.data.images.load(probe))
+    glossy_spheres(3 * 64, 96, samples)
+    return bpy.context.scene
+
+
+def thirds_difference(reference, other):
+    """block_difference of each third (glossy_spheres' roughnesses), in %, as "a / b / c"."""
+    return " / ".join("%.2f" % (100 * block_difference(a, b)[0]) for a, b in zip(thirds(reference), thirds(other)))
+
+
 def ground_under_sphere(samples, size=16):
     """The evaluator's shadow scene (native/include/probelights/evaluate.h), rendered: a white diffuse plane at z = 0
     under a unit sphere resting on it at the origin, seen straight down by an orthographic camera over
