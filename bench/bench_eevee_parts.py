@@ -34,16 +34,6 @@ if rest:
     names = rest[0].split(",")
     PROBES = [p for p in PROBES if os.path.splitext(os.path.basename(p))[0] in names]
 W, H, SAMPLES, SOURCE_LAMPS = 160, 120, 32, 16
-B = render_scene.BLOCK
-
-
-def blocks(a):
-    h, w = a.shape[0] // B, a.shape[1] // B
-    return a[: h * B, : w * B].reshape(h, B, w, B, *a.shape[2:]).mean(axis=(1, 3))
-
-
-def luminance(picture):
-    return blocks(picture[..., :3] @ render_scene.LUM)
 
 
 def cell(d):
@@ -59,9 +49,7 @@ for probe in PROBES:
     ref = render_scene.render()
     scene.render.engine = eevee
     a = render_scene.render()
-    y_ref = luminance(ref)
-    solid = blocks((ref[..., 3] > 0.999).astype(float)) == 1.0
-    lit = solid & (y_ref > 0.02 * y_ref[solid].max())  # render_scene.block_difference's blocks
+    lit = render_scene.lit_blocks(ref)  # the blocks render_scene.block_difference compares
     scene = render_scene.eevee_comparison_scene(probe, eevee, W, H, SAMPLES)
     assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=SOURCE_LAMPS, lamps_take="SOURCES") == {"FINISHED"}
     c = render_scene.render()
@@ -73,8 +61,8 @@ for probe in PROBES:
     cw = render_scene.render()
     scene.render.engine = eevee
     ew = render_scene.render()
-    y = {k: luminance(v)[lit] for k, v in {"a": a, "c": c, "cc": cc, "cw": cw, "ew": ew}.items()}
-    r = y_ref[lit]
+    y = {k: render_scene.block_luminance(v)[lit] for k, v in {"a": a, "c": c, "cc": cc, "cw": cw, "ew": ew}.items()}
+    r = render_scene.block_luminance(ref)[lit]
     print("| %s | %s | %s | %s | %s | %s | %.3f |" % (
         os.path.basename(probe), cell((y["a"] - r) / r), cell((y["c"] - r) / r),
         cell(((y["c"] - y["ew"]) - (y["cc"] - y["cw"])) / r), cell((y["ew"] - y["cw"]) / r), cell((y["cc"] - r) / r),

@@ -28,7 +28,7 @@ rest = [a for i, a in enumerate(argv) if not a.startswith("--") and not argv[i -
 samples = int(rest[0]) if rest else 64
 harness.install_addon(zip_path)
 shadows = harness.addon_module("eevee_settings")
-studio = bpy.utils.system_resource("DATAFILES", path="studiolights/world")
+studio = harness.blender_studiolights()
 PROBES = [harness.BUNDLED_PROBE] + [os.path.join(studio, n) for n in ("forest.exr", "sunset.exr")]
 W, H = 160, 120
 

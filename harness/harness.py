@@ -62,14 +62,18 @@ def bench_probes(shared, studio_lights=True):
         probes += [p for p in sorted(glob.glob(os.path.join(shared, "hdri", "*"))) if p.endswith((".hdr", ".exr"))
                    and os.path.basename(p) != os.path.basename(BUNDLED_PROBE)]
     if studio_lights:
-        probes += sorted(glob.glob(os.path.join(
-            bpy.utils.system_resource("DATAFILES", path="studiolights/world"), "*.exr")))
+        probes += sorted(glob.glob(os.path.join(blender_studiolights(), "*.exr")))
     return probes
 
 
-def studiolights(a):
+def blender_studiolights():
     """The folder of the running Blender's own lat-long studio lights (8 CC0 .exr, shipped with every Blender)."""
-    return a.studiolights or bpy.utils.system_resource("DATAFILES", path="studiolights/world")
+    return bpy.utils.system_resource("DATAFILES", path="studiolights/world")
+
+
+def studiolights(a):
+    """The studio lights' folder the tests were given (--studiolights), or the running Blender's own."""
+    return a.studiolights or blender_studiolights()
 
 
 def shared_probe(a, name, fallback=None):

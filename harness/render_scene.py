@@ -205,18 +205,29 @@ def render():
     return a.reshape(h, w, 4)[::-1]
 
 
+def blocks(a):
+    """The mean of each whole 8x8 block of an image (H x W or H x W x C)."""
+    h, w = a.shape[0] // BLOCK, a.shape[1] // BLOCK
+    return a[: h * BLOCK, : w * BLOCK].reshape(h, BLOCK, w, BLOCK, *a.shape[2:]).mean(axis=(1, 3))
+
+
+def block_luminance(picture):
+    return blocks(picture[..., :3] @ LUM)
+
+
+def lit_blocks(world_lit):
+    """The blocks block_difference compares: made only of object pixels (alpha 1) and lit above 2 % of the
+    brightest of them."""
+    ya = block_luminance(world_lit)
+    solid = blocks((world_lit[..., 3] > 0.999).astype(float)) == 1.0
+    return solid & (ya > 0.02 * ya[solid].max())
+
+
 def block_difference(world_lit, light_lit):
     """Mean over the 8x8 blocks made only of lit object pixels of |lights - world| / world (luminance)."""
-    H, W = world_lit.shape[:2]
-    h, w = H // BLOCK, W // BLOCK
-
-    def blocks(a):
-        return a[: h * BLOCK, : w * BLOCK].reshape(h, BLOCK, w, BLOCK, *a.shape[2:]).mean(axis=(1, 3))
-
-    ya, yb = blocks(world_lit[..., :3] @ LUM), blocks(light_lit[..., :3] @ LUM)
-    solid = blocks((world_lit[..., 3] > 0.999).astype(float)) == 1.0
-    lit = solid & (ya > 0.02 * ya[solid].max())
-    rel = np.abs(yb[lit] - ya[lit]) / ya[lit]
+    lit = lit_blocks(world_lit)
+    ya, yb = block_luminance(world_lit)[lit], block_luminance(light_lit)[lit]
+    rel = np.abs(yb - ya) / ya
     return float(rel.mean()), int(lit.sum())
 
 
