@@ -4,15 +4,15 @@ default Principled BSDF at roughness 0.2, 0.5 and 1.0, render_scene.glossy_spher
   full  the world lit by every ray;                 noise  the same with another seed;
   D     the world seen by the camera and diffuse and volume rays (glossy and transmission off);
   G     the world seen by glossy and transmission rays only;
-  split the add-on's default bake, 64 lamps (Lamps take: All of the light: lamps for diffuse light, the world's
-        visibility left to reflections);
+  split the add-on's default bake, LAMPS lamps (64 unless given; Lamps take: All of the light: lamps for diffuse
+        light, the world's visibility left to reflections);
   L     the same lamps with the world hidden from every ray but the camera's: the lamps alone;
 and prints, each a third of the picture against its reference (render_scene.block_difference, %): noise; D + G
 against full (what Cycles' own split of the world costs); the default bake against full; L + G against full (the
 lamps and the world's reflections rendered apart); L against D (the lamps against the world's diffuse light).
 
     tests/blender/run.sh ~/.cache/probelights/bpy-4.5.15/bin/python bench/bench_glossy_parts.py \\
-        build/probe_lights-0.1.0-linux_x64.zip ../shared [NAME,NAME,... [SAMPLES]]
+        build/probe_lights-0.1.0-linux_x64.zip ../shared [NAME,NAME,... [SAMPLES [LAMPS]]]
 
 (256 Cycles samples by default, 192x96 pixels, 4 bounces; NAME: probe file names without their extension, or "all")
 """
@@ -29,6 +29,7 @@ import render_scene  # noqa: E402
 zip_path, shared, rest = harness.bench_argv()
 harness.install_addon(zip_path)
 SAMPLES = int(rest[1]) if len(rest) > 1 else 256
+LAMPS = int(rest[2]) if len(rest) > 2 else 64
 names = rest[0].split(",") if rest and rest[0] != "all" else None
 PROBES = [p for p in harness.bench_probes(shared, studio_lights=False)
           if names is None or os.path.splitext(os.path.basename(p))[0] in names]
@@ -46,8 +47,8 @@ def added(a, b):
     return out
 
 
-print("| probe | noise (seed 2) | world split by visibility, D + G | default bake, 64 lamps | lamps alone + G | "
-      "lamps alone against D |")
+print("| probe | noise (seed 2) | world split by visibility, D + G | default bake, %d lamps | lamps alone + G | "
+      "lamps alone against D |" % LAMPS)
 print("|---|---|---|---|---|---|")
 for probe in PROBES:
     scene = render_scene.glossy_probe_scene(probe, SAMPLES)
@@ -61,7 +62,7 @@ for probe in PROBES:
     visible_to(world, "glossy", "transmission")
     g = render_scene.render()
     visible_to(world, *RAYS)
-    assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=64, lamps_take="ALL") == {"FINISHED"}
+    assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=LAMPS, lamps_take="ALL") == {"FINISHED"}
     split = render_scene.render()
     kept = {ray: getattr(world.cycles_visibility, ray) for ray in RAYS}
     visible_to(world, *[ray for ray in RAYS if kept[ray] and ray not in ("glossy", "transmission")])
