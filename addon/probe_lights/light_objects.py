@@ -14,7 +14,7 @@ import bpy
 import numpy as np
 from mathutils import Matrix, Vector
 
-from . import light_kinds
+from . import light_kinds, world_mix
 from .conversion import point_parameters, sun_parameters
 
 COLLECTION_TAG = "probe_lights_collection"
@@ -294,18 +294,28 @@ def sync_visibility(scene):
 
 
 @bpy.app.handlers.persistent
-def _on_depsgraph_update(scene, depsgraph=None):
+def _follow_world(scene, *_):
+    """After every depsgraph update and before every render: the lamps of the scene's world only, and the residual
+    at the world's strength."""
     try:
         sync_visibility(scene)
+        world_mix.follow_strength(scene.world)
     except (AttributeError, ReferenceError, RuntimeError):
         pass
 
 
+_HANDLERS = (("depsgraph_update_post", _follow_world), ("render_pre", _follow_world))
+
+
 def register():
-    if _on_depsgraph_update not in bpy.app.handlers.depsgraph_update_post:
-        bpy.app.handlers.depsgraph_update_post.append(_on_depsgraph_update)
+    for name, f in _HANDLERS:
+        handlers = getattr(bpy.app.handlers, name)
+        if f not in handlers:
+            handlers.append(f)
 
 
 def unregister():
-    if _on_depsgraph_update in bpy.app.handlers.depsgraph_update_post:
-        bpy.app.handlers.depsgraph_update_post.remove(_on_depsgraph_update)
+    for name, f in _HANDLERS:
+        handlers = getattr(bpy.app.handlers, name)
+        if f in handlers:
+            handlers.remove(f)

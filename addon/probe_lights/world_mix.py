@@ -18,10 +18,10 @@ refracts the world, and lamps lighting it through transmission too made a glass 
 % with the world alone lighting it; tests/blender/test_render.py).
 
 When the lamps take only the bright sources (Lamps take: The bright sources), every ray but the camera's sees
-the residual (what the core's split leaves of the probe, packed in the .blend, looked up along the same
-directions as the probe at its strength) and the lamps light every effect: lamps and residual together are the
-world's light, once, with nothing routed by effect (0.2-0.7 % from the world on glossy materials at 64 lamps,
-same bench).
+the residual (what the core's split leaves of the probe, packed in the .blend, looked up through the probe's own
+Vector input at its strength, so that it turns and scales with the probe as the lamps do) and the lamps light every
+effect: lamps and residual together are the world's light, once, with nothing routed by effect (0.2-0.7 % from the
+world on glossy materials at 64 lamps, same bench).
 
 Every node it adds carries the custom property "probe_lights"; the mix also carries world_graph.MIX_TAG; the
 world's ray visibility before the bake is kept in its VISIBILITY_TAG property. Nothing else is touched, so
@@ -37,12 +37,13 @@ from dataclasses import dataclass
 import bpy
 import numpy as np
 
-from .world_graph import MIX_TAG, transpose, uses_nodes
+from .world_graph import MIX_TAG, find_probe, transpose, uses_nodes
 
 NODE_TAG = "probe_lights"
 ENABLED_NODES_TAG = "probe_lights_enabled_nodes"
 EEVEE_OUTPUT_TAG = "probe_lights_eevee_output"
 VISIBILITY_TAG = "probe_lights_visibility"  # the world's Cycles ray visibility before the bake
+FOLLOWS_TAG = "probe_lights_follows_strength"  # on the residual's Background: its strength is the probe's
 RAYS = ("diffuse", "glossy", "transmission", "scatter")
 
 
@@ -52,6 +53,10 @@ class Residual:
     projection: str          # the Environment Texture's: "EQUIRECTANGULAR" | "MIRROR_BALL"
     lookup: list             # 3x3: world direction -> the image's direction (the probe's chain)
     strength: float          # the probe's Background strength
+    shares_vector: bool = False  # look the residual up through the probe's own Vector input (it follows it)
+    vector_from: object = None   # the socket linked to the probe's Environment Texture's Vector (None: unlinked)
+    interpolation: str = "Linear"
+    follows_strength: bool = False  # the strength follows the probe's, as the lamps' do (follow_strength)
 
 
 def residual_world(world, residual, source):
@@ -70,7 +75,19 @@ def residual_world(world, residual, source):
     image.file_format = "OPEN_EXR"
     image.pack()
     projection = "MIRROR_BALL" if source.projection == "mirror-ball" else "EQUIRECTANGULAR"
-    return Residual(image, projection, transpose(source.world_from_probe), source.strength)
+    out = Residual(image, projection, transpose(source.world_from_probe), source.strength)
+    # The residual turns and scales with the probe exactly when the lamps do (light_objects.py: by drivers on the
+    # one Mapping node and the Background's strength): it is then looked up through the probe's own Vector input
+    # (any later change of the chain is the probe's too) and its strength kept to the probe's (follow_strength).
+    node = source.image_node
+    if node is not None and node.id_data == world.node_tree:
+        vector = node.inputs["Vector"]
+        if not vector.is_linked or source.rotation_socket is not None:
+            out.shares_vector = True
+            out.vector_from = vector.links[0].from_socket if vector.is_linked else None
+            out.interpolation = node.interpolation
+    out.follows_strength = source.strength_socket is not None and float(source.strength) != 0.0
+    return out
 
 
 def _residual_background(tree, residual, add, dy):
@@ -81,7 +98,11 @@ def _residual_background(tree, residual, add, dy):
     env.projection = residual.projection
     tree.links.new(env.outputs["Color"], bg.inputs["Color"])
     identity = all(abs(residual.lookup[i][j] - (i == j)) < 1e-12 for i in range(3) for j in range(3))
-    if not identity:
+    if residual.shares_vector:
+        env.interpolation = residual.interpolation
+        if residual.vector_from is not None:
+            tree.links.new(residual.vector_from, env.inputs["Vector"])
+    elif not identity:
         from mathutils import Matrix
         mapping = add("ShaderNodeMapping", -660, dy)
         mapping.vector_type = "POINT"
@@ -89,10 +110,33 @@ def _residual_background(tree, residual, add, dy):
         coords = add("ShaderNodeTexCoord", -880, dy)
         tree.links.new(coords.outputs["Generated"], mapping.inputs["Vector"])
         tree.links.new(mapping.outputs["Vector"], env.inputs["Vector"])
-    # The probe's strength now: a driver on the world's own tree reading it would be a dependency cycle, so a
-    # later change of the strength is not followed here as the lamps follow it (docs/blender.md: bake again).
     bg.inputs["Strength"].default_value = residual.strength
+    if residual.follows_strength:
+        bg[FOLLOWS_TAG] = 1
     return bg
+
+
+def follow_strength(world):
+    """Keeps the residual's Background strength to the probe's, as the lamps' drivers keep theirs. Not a driver: one
+    on the world's tree reading its own Background is a dependency cycle (bpy 4.5.15 says so); it runs after every
+    depsgraph update and before every render (light_objects.py). True when it changed the strength."""
+    if world is None or world.node_tree is None:
+        return False
+    bg = next((n for n in world.node_tree.nodes if n.get(FOLLOWS_TAG) and n.bl_idname == "ShaderNodeBackground"),
+              None)
+    if bg is None:
+        return False
+    try:
+        source = find_probe(world, bpy.app.version)
+    except ValueError:  # no world image now: the panel says so
+        return False
+    if source.image is None or source.strength_socket is None:
+        return False
+    strength = source.strength_socket.default_value
+    if bg.inputs["Strength"].default_value == strength:
+        return False
+    bg.inputs["Strength"].default_value = strength
+    return True
 
 
 def _tagged(tree):

@@ -75,13 +75,22 @@ def test_baked_lights_render_like_the_world():
 def test_lamps_of_the_sources_and_the_residual_world_render_like_the_world():
     """Lamps take: The bright sources. The lamps take the light above 10 x the world's mean and every ray but the
     camera's sees the residual (the camera the original): the render must match the world's, and in it
-    nothing is lit twice (lamps hidden, the residual world alone is darker by the lamps' share). Restore takes the
-    residual image out with the mix."""
+    nothing is lit twice (lamps hidden, the residual world alone is darker by the lamps' share). The world then
+    turned and made stronger: lamps and residual follow it together (the render matches the changed world's; the
+    residual's turn alone is tested on a world it shows in: test_the_residual_turns_with_the_world). Restore takes
+    the residual image out with the mix."""
     harness.empty_scene()
     image = bpy.data.images.load(harness.BUNDLED_PROBE)
-    harness.env_world(image, rotation=(0.0, 0.0, math.radians(70)))  # the residual must turn with the probe
+    world = harness.env_world(image, rotation=(0.0, 0.0, math.radians(70)))  # the residual must turn with the probe
     sphere_over_plane()
     world_lit = render()
+    nt = world.node_tree
+    mapping = next(n for n in nt.nodes if n.bl_idname == "ShaderNodeMapping")
+    mapping.inputs["Rotation"].default_value = (0.0, 0.0, math.radians(160))
+    nt.nodes["Background"].inputs["Strength"].default_value = 2.5
+    changed_lit = render()
+    mapping.inputs["Rotation"].default_value = (0.0, 0.0, math.radians(70))
+    nt.nodes["Background"].inputs["Strength"].default_value = 1.0
     assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=4, lamps_take="SOURCES") == {"FINISHED"}
     residuals = [i for i in bpy.data.images if i.get("probe_lights")]
     assert len(residuals) == 1 and residuals[0].packed_file is not None, residuals
@@ -98,10 +107,42 @@ def test_lamps_of_the_sources_and_the_residual_world_render_like_the_world():
           "the lamps light %.0f %% of the picture" % (len(lamps), 100 * diff, blocks, SAMPLES, 100 * share),
           flush=True)
     assert diff < BOUND and share > 0.2, (diff, share)
+    mapping.inputs["Rotation"].default_value = (0.0, 0.0, math.radians(160))
+    nt.nodes["Background"].inputs["Strength"].default_value = 2.5
+    followed = block_difference(changed_lit, render())[0]
+    print("  the world turned by 90 degrees and 2.5x stronger: lamps + residual %.2f %% from its render" % (
+        100 * followed), flush=True)
+    assert followed < BOUND, followed
+    mapping.inputs["Rotation"].default_value = (0.0, 0.0, math.radians(70))
+    nt.nodes["Background"].inputs["Strength"].default_value = 1.0
     assert bpy.ops.probe_lights.restore() == {"FINISHED"}
     assert not [i for i in bpy.data.images if i.get("probe_lights")]
     restored = render()
     assert block_difference(world_lit, restored)[0] < 0.01
+
+
+def test_the_residual_turns_with_the_world():
+    """A world whose light left in the residual differs with the azimuth (a bright half sky and a dim one, and a
+    sun the lamps take), baked to the sources, then turned by a quarter and made 2.5x stronger: the lamps and the
+    residual follow it together, so the render matches the changed world's (the residual left where it was, the
+    bright half of the sky lights the scene from the wrong side)."""
+    harness.empty_scene()
+    sky = np.full((64, 128, 3), 0.3, np.float32)  # the ground
+    sky[:32, :64], sky[:32, 64:] = 2.0, 0.2
+    sky[18:21, 95:98] = 400.0
+    world = harness.env_world(harness.float_image("half sky", sky), rotation=(0.0, 0.0, 0.3))
+    sphere_over_plane()
+    assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=2, lamps_take="SOURCES") == {"FINISHED"}
+    nt = world.node_tree
+    mapping = next(n for n in nt.nodes if n.bl_idname == "ShaderNodeMapping")
+    mapping.inputs["Rotation"].default_value = (0.0, 0.0, 0.3 + math.pi / 2)
+    nt.nodes["Background"].inputs["Strength"].default_value = 2.5
+    followed = render()
+    assert bpy.ops.probe_lights.restore() == {"FINISHED"}
+    diff = block_difference(render(), followed)[0]
+    print("  half-sky world turned by a quarter and 2.5x stronger after the bake: 2 lamps + residual %.2f %% from "
+          "its render" % (100 * diff), flush=True)
+    assert diff < BOUND, diff
 
 
 def test_glossy_materials_render_like_the_world():
@@ -261,4 +302,4 @@ def test_light_units_in_cycles():
 
 harness.run([test_light_units_in_cycles, test_baked_lights_render_like_the_world,
              test_lamps_of_the_sources_and_the_residual_world_render_like_the_world,
-             test_glossy_materials_render_like_the_world, test_glass_refracts_the_world_once])
+             test_the_residual_turns_with_the_world, test_glossy_materials_render_like_the_world, test_glass_refracts_the_world_once])
