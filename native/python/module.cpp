@@ -329,7 +329,8 @@ std::vector<std::string> methodNames() {
 // The tradeoff grid (tradeoff.h) in the layout of the CLI's tradeoff JSON (result_layout.h).
 py::dict tradeoffRows(Pixels pixels, const std::string& projection, const std::string& effects,
                       const std::vector<int>& counts, const std::vector<std::string>& methods, bool refit,
-                      int evaluatorWidth, const std::string& sunProfile, const std::string& nonfinite) {
+                      int evaluatorWidth, const std::string& sunProfile, const std::string& sunCones,
+                      const std::string& nonfinite) {
   const ImageView view = viewOf(pixels);
   const auto kind = parseProjection(projection);
   const NonFinitePolicy policy = parseNonFinitePolicy(nonfinite);
@@ -345,7 +346,9 @@ py::dict tradeoffRows(Pixels pixels, const std::string& projection, const std::s
   {
     py::gil_scoped_release release;
     probe.emplace(view, kind, policy);
-    Evaluator evaluator(*probe, e, EvaluatorOptions{evaluatorWidth, refit, parseSunProfile(sunProfile)});
+    Evaluator evaluator(
+        *probe, e,
+        EvaluatorOptions{evaluatorWidth, refit, parseSunProfile(sunProfile), parseSunCones(sunCones)});
     rows = tradeoff(*probe, evaluator, options);
   }
   py::dict d;
@@ -419,7 +422,7 @@ PYBIND11_MODULE(_probelights, m) {
       "tradeoff", &tradeoffRows, py::arg("pixels"), py::kw_only(), py::arg("projection") = "latlong",
       py::arg("effects") = "diffuse,shadow", py::arg("counts") = std::vector<int>{4, 8, 16, 32, 64, 128, 256},
       py::arg("methods") = methodNames(), py::arg("refit") = true, py::arg("evaluator_width") = 2048,
-      py::arg("sun_profile") = "cone", py::arg("nonfinite") = "error",
+      py::arg("sun_profile") = "cone", py::arg("sun_cones") = "free", py::arg("nonfinite") = "error",
       "What accuracy costs in time, in the layout of the CLI's tradeoff JSON: source, effects, error, and "
       "rows: a dict of columns (method, lights, made, resolution, refit, bake_ms, each effect's error), one "
       "entry per (method, count, refit).");

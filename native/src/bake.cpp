@@ -15,11 +15,13 @@ bool bakesOnGridAlone(const BakeOptions& options, const AccuracyOptions& a) {
 }
 
 EvaluatedBake bakeOnGrid(const Probe& probe, const MomentTable& table, double tablesMs,
-                         const BakeOptions& options, SunAngles angles) {
+                         const BakeOptions& options, SunAngles angles, SunCones cones) {
   EvaluatedBake out;
   out.cut = options.method;
   out.bake = bake(probe, table, options);
   applySunAngles(angles, nullptr, out.bake.lights);
+  keepSunCones(cones, out.bake.lights);
+  out.sunCones = cones;
   out.sunAngles = angles == SunAngles::Points ? SunAngles::Points : SunAngles::Spread;
   out.bake.timings.tablesMs = tablesMs;
   out.count = options.lights;
@@ -50,13 +52,15 @@ EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOpt
     out.bake = prebuilt ? prebuilt->bake(probe, options) : bake(probe, options);
     out.count = options.lights;
     applySunAngles(a.sunAngles, nullptr, out.bake.lights);
+    keepSunCones(a.sunCones, out.bake.lights);
     out.sunAngles = a.sunAngles == SunAngles::Points ? SunAngles::Points : SunAngles::Spread;
+    out.sunCones = a.sunCones;
     return out;
   }
   // One working grid for the bakes and the evaluator's samples (no second pass over the pixels).
   std::optional<WorkingGrid> built;
   const WorkingGrid& grid = prebuilt ? *prebuilt : built.emplace(probe, options);
-  const EvaluatorOptions evaluatorOptions{a.evaluatorWidth, a.refit, a.sunProfile};
+  const EvaluatorOptions evaluatorOptions{a.evaluatorWidth, a.refit, a.sunProfile, a.sunCones};
   const Evaluator evaluator = grid.table() ? Evaluator(probe, *grid.table(), a.effects, evaluatorOptions)
                                            : Evaluator(probe, a.effects, evaluatorOptions);
   if (a.maxError > 0) {
@@ -93,6 +97,7 @@ EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOpt
   out.effects = a.effects;
   out.sunAngles = a.sunAngles == SunAngles::Fit && !(a.effects & kShadow) ? SunAngles::Spread : a.sunAngles;
   out.sunProfile = a.sunProfile;
+  out.sunCones = a.sunCones;
   out.errors = evaluator.evaluate(out.bake.lights);
   out.truthNorms = evaluator.truthNorms();
   return out;

@@ -11,6 +11,8 @@ namespace probelights {
 
 namespace {
 constexpr NameTable<SunProfile, 2> kProfiles{{{SunProfile::Cone, "cone"}, {SunProfile::TangentDisc, "disc"}}};
+constexpr NameTable<SunCones, 2> kCones{
+    {{SunCones::Free, "free"}, {SunCones::AboveHorizon, "above-horizon"}}};
 constexpr double kMaxDiscHalfAngle = 89 * kPi / 180;
 
 // The profile's radiance weight at angle t from the axis, and its facing irradiance over a cone of
@@ -84,6 +86,13 @@ double smoothPiece(double t0, double t1, F&& f) {
 
 std::string toString(SunProfile profile) { return std::string(nameOf(kProfiles, profile)); }
 SunProfile parseSunProfile(const std::string& name) { return parseName(kProfiles, "sun profile", name); }
+std::string toString(SunCones cones) { return std::string(nameOf(kCones, cones)); }
+SunCones parseSunCones(const std::string& name) { return parseName(kCones, "sun cones", name); }
+
+double horizonAngle(const Vec3& d) {
+  const double length = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+  return length > 0 ? 2 * std::asin(std::min(1.0, std::abs(d.z) / length)) : 0.0;
+}
 
 Cap makeCap(const Vec3& axis, double radius) { return {axis, radius, std::cos(radius), std::sin(radius)}; }
 

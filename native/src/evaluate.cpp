@@ -392,7 +392,7 @@ std::vector<Rgb> shadowTruthAt(const std::vector<Vec3>& directions, const std::v
 }  // namespace
 
 Evaluator::Evaluator(const Probe& probe, const MomentTable* grid, Effects effects, EvaluatorOptions options)
-    : effects_(effects), profile_(options.sunProfile) {
+    : effects_(effects), profile_(options.sunProfile), cones_(options.sunCones) {
   // Probe samples: pixels, or cells of whole pixels for probes wider than options.maxWidth.
   const int maxWidth = std::max(1, options.maxWidth);
   const int cell = std::max(1, (probe.width() + maxWidth - 1) / maxWidth);

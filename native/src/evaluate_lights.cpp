@@ -22,6 +22,10 @@ double relativeRms(const std::vector<Rgb>& got, const std::vector<Rgb>& truth) {
 }  // namespace
 
 double Evaluator::maxSunAngle() const { return profile_ == SunProfile::Cone ? kPi : 178 * kPi / 180; }
+double Evaluator::widestSunAngle(const Vec3& direction) const {
+  const double widest = maxSunAngle();
+  return cones_ == SunCones::AboveHorizon ? std::min(widest, horizonAngle(direction)) : widest;
+}
 
 double Evaluator::diffuseKernel(const Light& l, const Vec3& n) const {
   return l.angle > 0 ? coneIrradiance(l.direction, l.angle, n, nullptr, profile_)

@@ -129,6 +129,12 @@ std::vector<RequestOption> makeOptions() {
           [](R& r, S, S v) { r.accuracy.sunProfile = parseSunProfile(v); },
           [](const R& r) { return toString(r.accuracy.sunProfile); }),
       option(
+          "sun_cones", "free|above-horizon",
+          "how wide a sun's cone may be: free, or never across the horizon (half-angle <= elevation), for "
+          "renderers that shadow the part below a floor's horizon (EEVEE)",
+          [](R& r, S, S v) { r.accuracy.sunCones = parseSunCones(v); },
+          [](const R& r) { return toString(r.accuracy.sunCones); }),
+      option(
           "cuts", "one|both|auto",
           "one: the method's cut; both: variance and median cut each made ready, the better kept; auto: both "
           "up "
@@ -261,7 +267,7 @@ EvaluatedBake bakeSources(const Probe& probe, const BakeRequest& request) {
   EvaluatedBake ev = bakeEvaluated(sources, request.bake, request.accuracy);
   if (seam != 0) turnBack(ev.bake, seam, probe.width());
   if (ev.evaluated) {
-    const EvaluatorOptions options{request.accuracy.evaluatorWidth, false, ev.sunProfile};
+    const EvaluatorOptions options{request.accuracy.evaluatorWidth, false, ev.sunProfile, ev.sunCones};
     const EffectErrors& part = ev.truthNorms;  // the sources' own, from the bake's evaluator
     const EffectErrors whole = Evaluator(probe, ev.effects, options).truthNorms();
     auto scale = [](double error, double p, double w) { return w > 0 ? error * p / w : error; };
@@ -279,7 +285,8 @@ EvaluatedBake bakeSources(const Probe& probe, const BakeRequest& request) {
 EvaluatedBake bakeLoaded(const Probe& probe, const BakeRequest& request, const MomentTable* grid,
                          double tablesMs) {
   if (request.takesSources()) return bakeSources(probe, request);
-  return grid ? bakeOnGrid(probe, *grid, tablesMs, request.bake, request.accuracy.sunAngles)
+  return grid ? bakeOnGrid(probe, *grid, tablesMs, request.bake, request.accuracy.sunAngles,
+                           request.accuracy.sunCones)
               : bakeEvaluated(probe, request.bake, request.accuracy);
 }
 

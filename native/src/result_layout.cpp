@@ -16,6 +16,7 @@ void writeEvaluation(ResultWriter& w, const EvaluatedBake& e) {
   if (e.refit && !e.autoCount) w.number("energy_shift", e.energyShift);
   w.text("sun_angles", toString(e.sunAngles));
   w.text("sun_profile", toString(e.sunProfile));
+  w.text("sun_cones", toString(e.sunCones));
   if (e.autoCount) {
     w.begin("auto_count");
     w.boolean("met", e.met);

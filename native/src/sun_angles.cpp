@@ -28,9 +28,11 @@ void fitSunAngles(const Evaluator& evaluator, std::vector<Light>& lights, bool r
   // The fit receivers (evaluate.h): ground points under the sphere and normals, each set weighted so the
   // objective is shadow error^2 + diffuse error^2 (on points the errors are not measured on).
   const std::vector<Receiver> receivers = evaluator.fitReceivers(refitReceivers);
+  // Every light within its widest angle first (the ones past the fitted ones keep their spread's angle), so
+  // the fit starts from lights the evaluator may draw.
+  keepSunCones(evaluator.sunCones(), lights);
   if (receivers.empty() || lights.empty()) return;
 
-  const double widest = evaluator.maxSunAngle();
   std::vector<std::size_t> order(lights.size());
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
@@ -45,6 +47,7 @@ void fitSunAngles(const Evaluator& evaluator, std::vector<Light>& lights, bool r
       Light& light = lights[i];
       if (!(luminance(light.rgb) > 0)) continue;
       const double start = std::max(light.angularRadius, kSmallest);
+      const double widest = evaluator.widestSunAngle(light.direction);
       // The light as it is and the candidates (trial_fit.h); the best if better than the light as it is.
       auto tryAngles = [&](const std::vector<double>& angles) {
         std::vector<Light> trials(angles.size() + 1, light);
@@ -67,6 +70,11 @@ void fitSunAngles(const Evaluator& evaluator, std::vector<Light>& lights, bool r
     }
 }
 
+void keepSunCones(SunCones cones, std::vector<Light>& lights) {
+  if (cones != SunCones::AboveHorizon) return;
+  for (Light& l : lights) l.angle = std::min(l.angle, horizonAngle(l.direction));
+}
+
 bool applySunAngles(SunAngles choice, const Evaluator* evaluator, std::vector<Light>& lights,
                     bool refitReceivers) {
   switch (choice) {
@@ -74,9 +82,13 @@ bool applySunAngles(SunAngles choice, const Evaluator* evaluator, std::vector<Li
       for (Light& l : lights) l.angle = 0;
       return false;
     case SunAngles::Spread:
+      if (evaluator) keepSunCones(evaluator->sunCones(), lights);
       return false;
     case SunAngles::Fit:
-      if (!evaluator || !(evaluator->effects() & kShadow)) return false;
+      if (!evaluator || !(evaluator->effects() & kShadow)) {
+        if (evaluator) keepSunCones(evaluator->sunCones(), lights);
+        return false;
+      }
       fitSunAngles(*evaluator, lights, refitReceivers);
       return true;
   }

@@ -25,7 +25,7 @@ TEST(Request, EveryOptionReadsBackWhatItWasSetTo) {
       {"evaluator_width", "512"}, {"sun_angles", "spread"},
       {"sun_profile", "disc"},    {"cuts", "auto"},
       {"nonfinite", "zero"},      {"source_level", "10"},
-      {"source_share", "0.6"}};
+      {"source_share", "0.6"},    {"sun_cones", "above-horizon"}};
   std::set<std::string> named;
   for (const auto& [name, value] : others) {
     const RequestOption& o = requestOption(name);

@@ -79,5 +79,64 @@ TEST(SunAngles, TheBakeReportsWhatItDid) {
   for (const Light& l : bakeEvaluated(probe, o, a).bake.lights) EXPECT_EQ(l.angle, 0.0);
 }
 
+TEST(SunAngles, AboveHorizonNoConeCrossesTheHorizon) {
+  // EEVEE darkens a sun by the part of its cone below a floor's horizon (cone.h): with SunCones::AboveHorizon
+  // no light's cone crosses it, fitted (within the fit, not cut after it), from the spread, or without an
+  // evaluator; the lights' rgb stay as made.
+  EXPECT_NEAR(horizonAngle({1, 0, 1}), kPi / 2, 1e-12);
+  EXPECT_NEAR(horizonAngle({0, 3, -3}), kPi / 2, 1e-12);
+  EXPECT_EQ(horizonAngle({2, 1, 0}), 0.0);
+  EXPECT_EQ(parseSunCones("above-horizon"), SunCones::AboveHorizon);
+  EXPECT_EQ(toString(SunCones::Free), "free");
+  EXPECT_THROW(parseSunCones("above"), Error);
+
+  // A dim sky and ground with a broad bright band low over the horizon (elevations 3-30 degrees, a quarter
+  // of the way round): its lights' fitted cones cross the horizon when free.
+  const testing::TestProbe band = testing::makeProbe(128, 64, ProjectionKind::LatLong, [](int x, int y) {
+    const double elevation = 90 - 180 * (y + 0.5) / 64;
+    if (elevation > 3 && elevation < 30 && x >= 48 && x < 80) return Rgb{30, 28, 25};
+    return elevation > 0 ? Rgb{0.5, 0.6, 0.8} : Rgb{0.2, 0.2, 0.2};
+  });
+  const Probe& probe = band.probe;
+  BakeOptions o;
+  o.lights = 4;
+  AccuracyOptions a;
+  a.evaluate = true;
+  a.effects = kDiffuse | kShadow;
+  a.evaluatorWidth = 128;
+  auto crossing = [](const std::vector<Light>& lights) {
+    int n = 0;
+    for (const Light& l : lights) n += l.angle > horizonAngle(l.direction) + 1e-12;
+    return n;
+  };
+  const EvaluatedBake free = bakeEvaluated(probe, o, a);
+  EXPECT_GT(crossing(free.bake.lights), 0) << "the test needs a fit whose cones cross the horizon";
+  a.sunCones = SunCones::AboveHorizon;
+  const EvaluatedBake above = bakeEvaluated(probe, o, a);
+  EXPECT_EQ(above.sunCones, SunCones::AboveHorizon);
+  EXPECT_EQ(crossing(above.bake.lights), 0);
+  ASSERT_EQ(above.bake.lights.size(), free.bake.lights.size());
+  int narrowed = 0;
+  for (std::size_t i = 0; i < free.bake.lights.size(); ++i) {
+    EXPECT_EQ(above.bake.lights[i].rgb, free.bake.lights[i].rgb);
+    narrowed += above.bake.lights[i].angle < free.bake.lights[i].angle;
+  }
+  EXPECT_GT(narrowed, 0);
+  // Fitted within the horizon: no farther than the free fit's cones cut to it (here the same: each wide cone
+  // fits best at its widest).
+  std::vector<Light> cut = free.bake.lights;
+  keepSunCones(SunCones::AboveHorizon, cut);
+  EXPECT_LE(above.errors.shadow,
+            Evaluator(probe, a.effects, {a.evaluatorWidth}).evaluate(cut).shadow + 1e-12);
+  for (SunAngles angles : {SunAngles::Spread, SunAngles::Fit}) {
+    a.sunAngles = angles;
+    for (bool evaluate : {true, false}) {
+      a.evaluate = evaluate;
+      a.effects = angles == SunAngles::Fit ? kDiffuse : kDiffuse | kShadow;  // fit without shadows: spread
+      EXPECT_EQ(crossing(bakeEvaluated(probe, o, a).bake.lights), 0) << toString(angles) << evaluate;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace probelights

@@ -36,6 +36,7 @@ struct AccuracyOptions {
   // judged and fitted as (cone.h).
   SunAngles sunAngles = SunAngles::Fit;
   SunProfile sunProfile = SunProfile::Cone;
+  SunCones sunCones = SunCones::Free;  // how wide a cone may be (cone.h), fitted or not
   // Which cut's lights (CutChoice) when the bake's method is variance or median cut. Not with a tolerance.
   CutChoice cuts = CutChoice::One;
 };
@@ -49,6 +50,7 @@ struct EvaluatedBake {
   double energyShift = 0;   // of the refit
   SunAngles sunAngles = SunAngles::Spread;   // what the lights' angles are: fit only when they were fitted
   SunProfile sunProfile = SunProfile::Cone;  // the sun they were judged as
+  SunCones sunCones = SunCones::Free;        // how wide their cones could be
   int count = 0;  // the light count asked for, or chosen when autoCount (bake.lights may hold fewer)
   Method cut = Method::Variance;              // the method the lights were cut with (the one kept)
   std::vector<std::pair<int, double>> tried;  // autoCount: (count, worst error) of every count tried
@@ -76,6 +78,6 @@ bool bakesOnGridAlone(const BakeOptions& options, const AccuracyOptions& accurac
 
 // bakeEvaluated for such a bake, on the grid loadGrid built (tablesMs: its build time, within the load).
 EvaluatedBake bakeOnGrid(const Probe& probe, const MomentTable& table, double tablesMs,
-                         const BakeOptions& options, SunAngles angles);
+                         const BakeOptions& options, SunAngles angles, SunCones cones = SunCones::Free);
 
 }  // namespace probelights

@@ -71,6 +71,7 @@ struct EvaluatorOptions {
       2048;  // probe samples: pixels up to this width, cells of whole pixels beyond (exact rgb sums)
   bool forRefit = false;                     // also the 1024 fit normals the irradiance refit needs
   SunProfile sunProfile = SunProfile::Cone;  // how the renderer spreads a sun's light over its angle (cone.h)
+  SunCones sunCones = SunCones::Free;        // how wide a fitted cone may be (cone.h)
 };
 
 class Evaluator {
@@ -134,7 +135,11 @@ class Evaluator {
   double shadowKernel(const Light& light, const Vec3& p) const;
   double glossyKernel(const Light& light, const Vec3& r, int exponent) const;
   SunProfile sunProfile() const { return profile_; }
+  SunCones sunCones() const { return cones_; }
   double maxSunAngle() const;  // the widest angle the profile draws: pi for a cone, 178 degrees for a disc
+  // The widest angle a sun towards `direction` may take: maxSunAngle(), and with SunCones::AboveHorizon no
+  // wider than horizonAngle(direction).
+  double widestSunAngle(const Vec3& direction) const;
   // Visibility of direction d from ground point p past the unit sphere at (0, 0, 1).
   static bool visible(const Vec3& p, const Vec3& d);
 
@@ -145,6 +150,7 @@ class Evaluator {
 
   Effects effects_;
   SunProfile profile_ = SunProfile::Cone;
+  SunCones cones_ = SunCones::Free;
   std::vector<Vec3> directions_;  // probe samples: unit directions
   std::vector<Rgb> radiance_;     // and their L dOmega
 

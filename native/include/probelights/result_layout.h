@@ -9,7 +9,7 @@
 //           energy_share
 //   total_rgb (3), timings_ms {load, tables, partition, lights}, notes,
 //   evaluation {effects, refit, error, diffuse | shadow | glossy, energy_shift, sun_angles, sun_profile,
-//               auto_count {met, lights, tried: a table of lights, worst_error}} | null
+//               sun_cones, auto_count {met, lights, tried: a table of lights, worst_error}} | null
 // and of the tradeoff grid (writeTradeoff, below).
 #pragma once
 

@@ -21,8 +21,9 @@ SunAngles parseSunAngles(const std::string& name);  // throws Error naming the c
 // and the normals, so no angle buys shadow at the cost of shading; none of them the points the errors are
 // measured on): coordinate descent over the 64 brightest lights (the others keep their spread's angle),
 // brightest first, two rounds; each light tries 0 and its spread angle times 2^(k/2), k = -6..4 (up to the
-// profile's widest angle), then a quarter-octave either side of the best. Minimizes shadow error^2 + diffuse
-// error^2 with colours and directions fixed. Needs an evaluator with kShadow (throws Error otherwise).
+// profile's widest angle, and with the evaluator's SunCones::AboveHorizon its horizonAngle), then a
+// quarter-octave either side of the best. Minimizes shadow error^2 + diffuse error^2 with colours and
+// directions fixed. Needs an evaluator with kShadow (throws Error otherwise).
 // refitReceivers: fitted on the refit's 1024 ground points instead (Evaluator::fitReceivers), as the refit's
 // own angle fits are.
 void fitSunAngles(const Evaluator& evaluator, std::vector<Light>& lights, bool refitReceivers = false);
@@ -31,5 +32,9 @@ void fitSunAngles(const Evaluator& evaluator, std::vector<Light>& lights, bool r
 // evaluator (may be null) has shadows. Returns whether the angles were fitted.
 bool applySunAngles(SunAngles choice, const Evaluator* evaluator, std::vector<Light>& lights,
                     bool refitReceivers = false);
+
+// With SunCones::AboveHorizon, each light's angle at most horizonAngle(direction) (cone.h); the evaluator's
+// sunCones() are kept so by fitSunAngles and applySunAngles, a bake without an evaluator calls this.
+void keepSunCones(SunCones cones, std::vector<Light>& lights);
 
 }  // namespace probelights
