@@ -13,7 +13,7 @@ import bpy
 import numpy as np
 
 from . import cycles_settings, eevee_settings, light_kinds, native, render_cost
-from .conversion import sun_profile
+from .conversion import sun_cones, sun_profile
 from .errors import ProbeError
 from .light_objects import baked_worlds, make_lights, remove_collection_if_empty, remove_lights, world_collection
 from .properties import NATIVE_SUN_ANGLES, cut_method, cuts
@@ -104,6 +104,7 @@ def bake_world(context, settings, progress=lambda fraction: None, rendered=None,
                             max_error=max_error, nonfinite=settings.non_finite,
                             sun_angles=NATIVE_SUN_ANGLES[settings.shadows] if kind.soft else "points",
                             sun_profile=sun_profile(bpy.app.version),
+                            sun_cones=sun_cones(scene.render.engine, bpy.app.version),
                             cuts=cuts(settings.method, max_error > 0), **extra)
     except ProbeError as e:
         message = str(e)

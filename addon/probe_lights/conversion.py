@@ -42,6 +42,16 @@ MAX_SUN_ANGLE = math.radians(180.0)
 MAX_DISC_SUN_ANGLE = math.radians(178.0)  # a 3.x sun is a disc of radius tan(angle / 2): kept finite (the core too)
 
 
+def sun_cones(engine, blender_version):
+    """How wide the suns' cones may be for a bake in that engine (the core's sun_cones, cone.h). EEVEE (4.2+)
+    darkens a whole sun by the part of its cone below the floor's horizon, so a bake in EEVEE keeps every cone
+    above it: 16 lamps then render within 0.2-3.5 % of Cycles' world on the 15 probes in 4.5.15, against 0.3-7.4 %
+    with free cones; in Cycles the free cones are closer (0.2-1.6 % against 0.2-2.0 %; docs/eevee.md,
+    bench/bench_eevee_cones.py), so a bake in any other engine leaves them free."""
+    eevee_next = tuple(blender_version) >= (4, 2, 0) and engine in ("BLENDER_EEVEE_NEXT", "BLENDER_EEVEE")
+    return "above-horizon" if eevee_next else "free"
+
+
 NORMALIZED_SUN_SINCE = (4, 0, 0)  # measured: 3.4 disc; 4.5, 5.0, 5.2 normalized (3.5 to 4.4 not measured)
 
 

@@ -168,6 +168,47 @@ def test_the_panels_count_of_suns_gives_the_fit_their_elevations_give():
     scene.render.engine = "CYCLES"
 
 
+def test_wide_suns_low_over_the_horizon_render_as_in_cycles():
+    """A broad bright band low over the horizon (elevations 3-30 degrees), 4 lamps: their fitted cones would cross
+    the horizon, and EEVEE darkens a sun by the part of its cone below the floor's horizon (a sun at 10 degrees:
+    0.85 of Cycles' light at an angle of 45 degrees, 0.74 at 90; docs/eevee.md). Baked in EEVEE, the add-on
+    keeps every cone above the horizon (conversion.sun_cones), so the lamps light the sphere over the plane in
+    EEVEE as they do in Cycles: measured in 4.5.15, with the cones free EEVEE gave 0.951 of Cycles' light on the
+    lit blocks (6.8 % apart), kept above 1.009 (3.7 %: the rest is EEVEE's own)."""
+    if bpy.app.version < (4, 2, 0):
+        print("  skipped: EEVEE Legacy (Blender %s)" % bpy.app.version_string)
+        return
+    harness.empty_scene()
+    harness.addon_module("eevee_settings").restore(bpy.context.scene)
+    band = np.zeros((128, 256, 3), np.float32)
+    elevation = 90 - 180 * (np.arange(128) + 0.5) / 128
+    band[elevation > 0], band[elevation <= 0] = (0.5, 0.6, 0.8), (0.2, 0.2, 0.2)
+    band[(elevation > 3) & (elevation < 30), 96:160] = (30, 28, 25)
+    harness.env_world(harness.float_image("low band", band))
+    render_scene.sphere_over_plane(160, 120, 128)
+    scene = bpy.context.scene
+    scene.cycles.max_bounces = 0  # EEVEE bounces no light off the plane without baked light probes
+    scene.eevee.taa_render_samples = 32
+    scene.render.engine = harness.eevee_engine()
+    assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=4) == {"FINISHED"}
+    scene.render.engine = "CYCLES"
+    suns = [o for o in scene.objects if o.type == "LIGHT"]
+    for o in suns:
+        up = o.matrix_world.to_3x3().col[2].normalized()  # towards the sun
+        assert o.data.angle <= 2 * abs(np.arcsin(up.z)) + 1e-4, (o.name, o.data.angle, up.z)
+    cycles = render_scene.render()
+    scene.render.engine = harness.eevee_engine()
+    eevee = render_scene.render()
+    scene.render.engine = "CYCLES"
+    diff, blocks = render_scene.block_difference(cycles, eevee)
+    lit = render_scene.lit_blocks(cycles)
+    ratio = render_scene.block_luminance(eevee)[lit].sum() / render_scene.block_luminance(cycles)[lit].sum()
+    print("  4 wide suns low over the horizon: EEVEE %.2f %% from Cycles, %.3f of its light (%d lit 8x8 blocks; "
+          "widest %.0f degrees)" % (100 * diff, ratio, blocks, max(np.degrees(o.data.angle) for o in suns)))
+    assert abs(ratio - 1) < 0.025 and diff < 0.05, (ratio, diff)
+
+
 harness.run([test_world_mix_in_eevee, test_baked_under_cycles_renders_right_in_eevee,
              test_sharp_suns_of_the_sources_fit_the_shadow_pool,
-             test_the_panels_count_of_suns_gives_the_fit_their_elevations_give])
+             test_the_panels_count_of_suns_gives_the_fit_their_elevations_give,
+             test_wide_suns_low_over_the_horizon_render_as_in_cycles])
