@@ -19,10 +19,7 @@ import render_scene  # noqa: E402
 
 zip_path, shared, rest = harness.bench_argv()
 harness.install_addon(zip_path)
-PROBES = harness.bench_probes(shared)
-if rest:
-    names = rest[0].split(",")
-    PROBES = [p for p in PROBES if os.path.splitext(os.path.basename(p))[0] in names]
+PROBES = harness.named_probes(harness.bench_probes(shared), rest[0] if rest else "")
 W, H, SAMPLES, LAMPS = 160, 120, 32, 16
 bake_module = harness.addon_module("bake")
 eevee = harness.eevee_engine()

@@ -30,9 +30,7 @@ zip_path, shared, rest = harness.bench_argv()
 harness.install_addon(zip_path)
 SAMPLES = int(rest[1]) if len(rest) > 1 else 256
 LAMPS = int(rest[2]) if len(rest) > 2 else 64
-names = rest[0].split(",") if rest and rest[0] != "all" else None
-PROBES = [p for p in harness.bench_probes(shared, studio_lights=False)
-          if names is None or os.path.splitext(os.path.basename(p))[0] in names]
+PROBES = harness.named_probes(harness.bench_probes(shared, studio_lights=False), rest[0] if rest else "")
 RAYS = ("camera", "diffuse", "glossy", "transmission", "scatter")
 
 

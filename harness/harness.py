@@ -66,6 +66,15 @@ def bench_probes(shared, studio_lights=True):
     return probes
 
 
+def named_probes(probes, names):
+    """The probes a bench was asked for: `names`, a comma list of file names without their extension ("" or "all":
+    every one)."""
+    if not names or names == "all":
+        return probes
+    wanted = names.split(",")
+    return [p for p in probes if os.path.splitext(os.path.basename(p))[0] in wanted]
+
+
 def blender_studiolights():
     """The folder of the running Blender's own lat-long studio lights (8 CC0 .exr, shipped with every Blender)."""
     return bpy.utils.system_resource("DATAFILES", path="studiolights/world")
