@@ -13,6 +13,7 @@ std::vector<Light> finishAngled(const Evaluator& evaluator, std::vector<Light> l
   // fit can lose on shadows what it wins on shading).
   if (refit) {
     std::vector<Light> moved = refitIrradiance(evaluator, lights, nullptr, moveDirections);
+    keepSunCones(evaluator.sunCones(), moved);  // a moved light keeps its angle, which may now cross
     if (fitted) {
       applySunAngles(angles, &evaluator, moved, true);
       moved = refitIrradiance(evaluator, moved);

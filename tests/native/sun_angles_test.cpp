@@ -128,14 +128,19 @@ TEST(SunAngles, AboveHorizonNoConeCrossesTheHorizon) {
   keepSunCones(SunCones::AboveHorizon, cut);
   EXPECT_LE(above.errors.shadow,
             Evaluator(probe, a.effects, {a.evaluatorWidth}).evaluate(cut).shadow + 1e-12);
-  for (SunAngles angles : {SunAngles::Spread, SunAngles::Fit}) {
-    a.sunAngles = angles;
-    for (bool evaluate : {true, false}) {
-      a.evaluate = evaluate;
-      a.effects = angles == SunAngles::Fit ? kDiffuse : kDiffuse | kShadow;  // fit without shadows: spread
-      EXPECT_EQ(crossing(bakeEvaluated(probe, o, a).bake.lights), 0) << toString(angles) << evaluate;
-    }
-  }
+  for (SunAngles angles : {SunAngles::Spread, SunAngles::Fit})
+    for (bool evaluate : {true, false})
+      for (bool refit : {false, true}) {  // the refit moving the directions, as the add-on bakes
+        a.sunAngles = angles;
+        a.evaluate = evaluate;
+        a.refit = a.moveDirections = refit;
+        a.effects = angles == SunAngles::Fit ? kDiffuse : kDiffuse | kShadow;  // fit without shadows: spread
+        EXPECT_EQ(crossing(bakeEvaluated(probe, o, a).bake.lights), 0)
+            << toString(angles) << evaluate << refit;
+      }
+  a.sunAngles = SunAngles::Fit;
+  a.effects = kDiffuse | kShadow;
+  EXPECT_EQ(crossing(bakeEvaluated(probe, o, a).bake.lights), 0) << "fitted and refit";
 }
 
 }  // namespace
