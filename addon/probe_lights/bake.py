@@ -16,7 +16,8 @@ import numpy as np
 from . import cycles_settings, eevee_settings, light_kinds, native, render_cost
 from .conversion import sun_cones, sun_profile
 from .errors import ProbeError
-from .light_objects import baked_worlds, make_lights, remove_collection_if_empty, remove_lights, world_collection
+from .light_objects import (baked_worlds, make_lights, remove_collection_if_empty, remove_lights, sun_height,
+                            world_collection)
 from .properties import NATIVE_SUN_ANGLES, cut_method, cuts
 from .world_graph import find_probe
 from .world_image import image_pixels, render_world
@@ -189,8 +190,7 @@ def _crosses_horizon(lamp):
     """Whether a sun's cone reaches across the horizon (half its angle above its elevation)."""
     if lamp.type != "LIGHT" or lamp.data.type != "SUN":
         return False
-    up = lamp.matrix_world.to_3x3().col[2]  # towards the sun: a sun shines along its -Z
-    return lamp.data.angle > 2 * math.asin(min(1.0, abs(up.z) / max(up.length, 1e-12))) + 1e-4
+    return lamp.data.angle > 2 * math.asin(sun_height(lamp)) + 1e-4
 
 
 def eevee_cones_note(scene):

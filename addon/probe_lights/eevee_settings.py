@@ -17,7 +17,7 @@ done; Restore world undoes it.
 
 import bpy
 
-from .light_objects import baked_lights
+from .light_objects import baked_lights, sun_height
 from .world_mix import has_residual
 from .remembered import put_back, set_remembering
 
@@ -53,8 +53,7 @@ def sun_pages(scene):
     total = 0.0
     for o in baked_lights(scene.world):
         if o.type == "LIGHT" and o.data.type == "SUN":
-            up = o.matrix_world.to_3x3().col[2]  # towards the sun: a sun shines along its -Z
-            total += PAGES_AT_HORIZON + PAGES_PER_SINE * abs(up.z) / max(up.length, 1e-12)
+            total += PAGES_AT_HORIZON + PAGES_PER_SINE * sun_height(o)
     if has_residual(scene.world):
         total += PAGES_AT_HORIZON + PAGES_PER_SINE
     return total

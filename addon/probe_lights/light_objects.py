@@ -52,6 +52,12 @@ def baked_worlds():
     return sorted(worlds, key=lambda w: w.name)
 
 
+def sun_height(lamp):
+    """|sin| of a sun lamp's elevation as it stands now (rig and drivers applied): a sun shines along its -Z."""
+    up = lamp.matrix_world.to_3x3().col[2]
+    return min(1.0, abs(up.z) / max(up.length, 1e-12))
+
+
 def baked_lights(world):
     c = world_collection(world)
     return [o for o in c.objects if o.get(OBJECT_TAG)] if c else []

@@ -72,6 +72,15 @@ def test_baked_lights_render_like_the_world():
     assert worst < BOUND, "the lights differ from the world by %.2f %% (bound %.1f %%)" % (100 * worst, 100 * BOUND)
 
 
+def turn(world, degrees, strength):
+    """The world's Mapping turned to `degrees` about Z and its Background at `strength`, as a user would after a
+    bake."""
+    nt = world.node_tree
+    mapping = next(n for n in nt.nodes if n.bl_idname == "ShaderNodeMapping")
+    mapping.inputs["Rotation"].default_value = (0.0, 0.0, math.radians(degrees))
+    nt.nodes["Background"].inputs["Strength"].default_value = strength
+
+
 def test_lamps_of_the_sources_and_the_residual_world_render_like_the_world():
     """Lamps take: The bright sources. The lamps take the light above 10 x the world's mean and every ray but the
     camera's sees the residual (the camera the original): the render must match the world's, and in it
@@ -84,13 +93,9 @@ def test_lamps_of_the_sources_and_the_residual_world_render_like_the_world():
     world = harness.env_world(image, rotation=(0.0, 0.0, math.radians(70)))  # the residual must turn with the probe
     sphere_over_plane()
     world_lit = render()
-    nt = world.node_tree
-    mapping = next(n for n in nt.nodes if n.bl_idname == "ShaderNodeMapping")
-    mapping.inputs["Rotation"].default_value = (0.0, 0.0, math.radians(160))
-    nt.nodes["Background"].inputs["Strength"].default_value = 2.5
+    turn(world, 160, 2.5)
     changed_lit = render()
-    mapping.inputs["Rotation"].default_value = (0.0, 0.0, math.radians(70))
-    nt.nodes["Background"].inputs["Strength"].default_value = 1.0
+    turn(world, 70, 1.0)
     assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=4, lamps_take="SOURCES") == {"FINISHED"}
     residuals = [i for i in bpy.data.images if i.get("probe_lights")]
     assert len(residuals) == 1 and residuals[0].packed_file is not None, residuals
@@ -107,14 +112,12 @@ def test_lamps_of_the_sources_and_the_residual_world_render_like_the_world():
           "the lamps light %.0f %% of the picture" % (len(lamps), 100 * diff, blocks, SAMPLES, 100 * share),
           flush=True)
     assert diff < BOUND and share > 0.2, (diff, share)
-    mapping.inputs["Rotation"].default_value = (0.0, 0.0, math.radians(160))
-    nt.nodes["Background"].inputs["Strength"].default_value = 2.5
+    turn(world, 160, 2.5)
     followed = block_difference(changed_lit, render())[0]
     print("  the world turned by 90 degrees and 2.5x stronger: lamps + residual %.2f %% from its render" % (
         100 * followed), flush=True)
     assert followed < BOUND, followed
-    mapping.inputs["Rotation"].default_value = (0.0, 0.0, math.radians(70))
-    nt.nodes["Background"].inputs["Strength"].default_value = 1.0
+    turn(world, 70, 1.0)
     assert bpy.ops.probe_lights.restore() == {"FINISHED"}
     assert not [i for i in bpy.data.images if i.get("probe_lights")]
     restored = render()
@@ -133,10 +136,7 @@ def test_the_residual_turns_with_the_world():
     world = harness.env_world(harness.float_image("half sky", sky), rotation=(0.0, 0.0, 0.3))
     sphere_over_plane()
     assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=2, lamps_take="SOURCES") == {"FINISHED"}
-    nt = world.node_tree
-    mapping = next(n for n in nt.nodes if n.bl_idname == "ShaderNodeMapping")
-    mapping.inputs["Rotation"].default_value = (0.0, 0.0, 0.3 + math.pi / 2)
-    nt.nodes["Background"].inputs["Strength"].default_value = 2.5
+    turn(world, math.degrees(0.3) + 90, 2.5)
     followed = render()
     assert bpy.ops.probe_lights.restore() == {"FINISHED"}
     diff = block_difference(render(), followed)[0]
