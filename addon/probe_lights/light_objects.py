@@ -67,25 +67,22 @@ def follow_cones(scene, cones):
     (conversion.sun_cones: the engine is EEVEE Next), at most the angle whose cone stays above the horizon where the
     sun now stands: lamps baked in Cycles render right in EEVEE and as baked in Cycles again, with no new bake
     (docs/eevee.md). A sun whose angle the user changed since keeps it. Returns how many angles changed."""
-    lowest = {}  # a sun's data -> the lowest of its objects (a linked duplicate shares it: one angle for both)
-    for o in baked_lights(scene.world):
-        if o.type == "LIGHT" and o.data.type == "SUN":
-            key = o.data.as_pointer()
-            lowest[key] = (o.data, min(sun_height(o), lowest.get(key, (None, 1.0))[1]))
     changed = 0
-    for data, height in lowest.values():
+    for o in baked_lights(scene.world):
+        data = o.data
+        if o.type != "LIGHT" or data.type != "SUN":
+            continue
         if ANGLE_KEY not in data:  # baked before the cones followed the engine: its angle is the bake's
             data[ANGLE_KEY] = data[ANGLE_SET_KEY] = data.angle
         if abs(data.angle - data.get(ANGLE_SET_KEY, data.angle)) > 1e-5:
             continue  # the user's own angle
         wanted = float(data[ANGLE_KEY])
         if cones == "above-horizon":
-            wanted = min(wanted, 2 * math.asin(height))
+            wanted = min(wanted, 2 * math.asin(sun_height(o)))
         if abs(data.angle - wanted) > 1e-6:
             data.angle = wanted
             changed += 1
-        if data.get(ANGLE_SET_KEY) != data.angle:  # written only when it changes: a write is a depsgraph update
-            data[ANGLE_SET_KEY] = data.angle  # as stored (float32)
+        data[ANGLE_SET_KEY] = data.angle  # as stored (float32)
     return changed
 
 
