@@ -1,9 +1,7 @@
 """docs/eevee.md's table of the suns' cones: EEVEE and Cycles with 16 lamps (Lamps take: All of the light) whose
 fitted cones may cross the horizon (sun_cones "free", the add-on's bake in Cycles) or not ("above-horizon", its bake
-in EEVEE: conversion.sun_cones), each against Cycles lit by the world; and the free bake rendered in EEVEE with the
-cones following the engine (light_objects.follow_cones: each angle cut to its horizon's before the render). Same
-scene and measure as bench_eevee_residual.py (the diffuse sphere over a plane, 160x120, direct light only, EEVEE
-32 samples, Cycles 256).
+in EEVEE: conversion.sun_cones), each against Cycles lit by the world. Same scene and measure as
+bench_eevee_residual.py (the diffuse sphere over a plane, 160x120, direct light only, EEVEE 32 samples, Cycles 256).
 
     tests/blender/run.sh --gl ~/.cache/probelights/bpy-4.5.15/bin/python bench/bench_eevee_cones.py \\
         build/probe_lights-0.1.0-linux_x64.zip ../shared [NAME,NAME,...]
@@ -24,13 +22,10 @@ harness.install_addon(zip_path)
 PROBES = harness.named_probes(harness.bench_probes(shared), rest[0] if rest else "")
 W, H, SAMPLES, LAMPS = 160, 120, 32, 16
 bake_module = harness.addon_module("bake")
-following = [harness.addon_module(m) for m in ("eevee_settings", "light_objects")]  # where the cones follow
 eevee = harness.eevee_engine()
 
-print("| probe | EEVEE, cones free | EEVEE, baked in Cycles, cones following | EEVEE, cones above the horizon "
-      "| Cycles, free | Cycles, above the horizon |")
-print("|---|---|---|---|---|---|")
-follows = following[0].sun_cones
+print("| probe | EEVEE, cones free | EEVEE, cones above the horizon | Cycles, free | Cycles, above the horizon |")
+print("|---|---|---|---|---|")
 for probe in PROBES:
     scene = render_scene.eevee_comparison_scene(probe, "CYCLES", W, H, SAMPLES)
     ref = render_scene.render()
@@ -48,16 +43,10 @@ for probe in PROBES:
         assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=LAMPS, lamps_take="ALL") == {"FINISHED"}
         cells["Cycles", cones] = cell(render_scene.render())
         scene.render.engine = eevee
-        for module in following:
-            module.sun_cones = lambda *_: "free"  # the angles as baked
         cells["EEVEE", cones] = cell(render_scene.render())
-        for module in following:
-            module.sun_cones = follows
-        if cones == "free":  # before the render, the cones follow the engine (light_objects.follow_cones)
-            cells["EEVEE", "following"] = cell(render_scene.render())
-    print("| %s | %s | %s | %s | %s | %s |" % (
-        os.path.basename(probe), cells["EEVEE", "free"], cells["EEVEE", "following"],
-        cells["EEVEE", "above-horizon"], cells["Cycles", "free"], cells["Cycles", "above-horizon"]), flush=True)
+    print("| %s | %s | %s | %s | %s |" % (os.path.basename(probe), cells["EEVEE", "free"],
+                                         cells["EEVEE", "above-horizon"], cells["Cycles", "free"],
+                                         cells["Cycles", "above-horizon"]), flush=True)
 print("Blender %s, %dx%d, %d lamps, EEVEE %d samples, Cycles %d (direct light)" % (
     bpy.app.version_string, W, H, LAMPS, SAMPLES, 8 * SAMPLES))
 sys.stdout.flush()

@@ -17,7 +17,7 @@ import numpy as np
 from mathutils import Matrix, Vector
 
 from . import light_kinds, world_mix
-from .conversion import point_parameters, sun_cones, sun_parameters
+from .conversion import point_parameters, sun_parameters
 
 COLLECTION_TAG = "probe_lights_collection"
 WORLD_KEY = "probe_lights_world"  # on the collection: the world it was baked from (an ID pointer)
@@ -329,12 +329,11 @@ def sync_visibility(scene):
 
 @bpy.app.handlers.persistent
 def _follow_world(scene, *_):
-    """After every depsgraph update and before every render: the lamps of the scene's world only, the residual at
-    the world's strength, and the suns' cones as the engine wants them (so EEVEE's viewport follows a turned world)."""
+    """After every depsgraph update and before every render: the lamps of the scene's world only, and the residual
+    at the world's strength."""
     try:
         sync_visibility(scene)
         world_mix.follow_strength(scene.world)
-        follow_cones(scene, sun_cones(scene.render.engine, bpy.app.version))
     except (AttributeError, ReferenceError, RuntimeError):
         pass
 
