@@ -7,6 +7,7 @@ lamps and mix, and take them out again. The operators (operators.py) only pass s
           --world_mix.insert_mix--> the world keeps only what the lamps do not replace
 """
 
+import math
 import time
 
 import bpy
@@ -15,7 +16,7 @@ import numpy as np
 from . import cycles_settings, eevee_settings, light_kinds, native, render_cost
 from .conversion import sun_cones, sun_profile
 from .errors import ProbeError
-from .light_objects import (baked_worlds, follow_cones, make_lights, remove_collection_if_empty, remove_lights,
+from .light_objects import (baked_worlds, make_lights, remove_collection_if_empty, remove_lights, sun_height,
                             world_collection)
 from .properties import NATIVE_SUN_ANGLES, cut_method, cuts
 from .world_graph import find_probe
@@ -24,6 +25,7 @@ from .world_mix import insert_mix, remove_mix, residual_world
 
 RENDER_WIDTH = 1024  # lat-long width a world without a readable image is rendered at
 IMAGE_KEY = "probe_lights_image"  # on a baked world: the image it was baked from (a re-bake is suggested if it changes)
+CONES_KEY = "probe_lights_cones_cross"  # on a baked world: a sun's cone crosses the horizon (conversion.sun_cones)
 LUM = np.array([0.2126, 0.7152, 0.0722])
 
 
@@ -127,7 +129,10 @@ def bake_world(context, settings, progress=lambda fraction: None, rendered=None,
     elif IMAGE_KEY in world:
         del world[IMAGE_KEY]
     context.view_layer.update()  # drivers and the rig put the lamps where they shine from
-    follow_cones(scene, sun_cones(scene.render.engine, bpy.app.version))
+    if any(_crosses_horizon(o) for o in lights):
+        world[CONES_KEY] = 1
+    elif CONES_KEY in world:
+        del world[CONES_KEY]
     lamps_ms = 1000 * (time.perf_counter() - bake_done)
     # The panel's notes say what was chosen; the figures behind a choice stay in the core's JSON.
     notes = [n.split(" (")[0].replace(" kept and finished", " kept") for n in baked["notes"]
@@ -181,17 +186,33 @@ def image_changed(world):
     return now if now != baked_from else ""
 
 
+def _crosses_horizon(lamp):
+    """Whether a sun's cone reaches across the horizon (half its angle above its elevation)."""
+    if lamp.type != "LIGHT" or lamp.data.type != "SUN":
+        return False
+    return lamp.data.angle > 2 * math.asin(sun_height(lamp)) + 1e-4
+
+
+def eevee_cones_note(scene):
+    """What the panel says when the scene renders in EEVEE with suns baked for another engine whose cones cross the
+    horizon (EEVEE renders them darker: conversion.sun_cones), else ''."""
+    world = scene.world
+    if world is None or not world.get(CONES_KEY) or sun_cones(scene.render.engine, bpy.app.version) == "free":
+        return ""
+    return "Some suns were baked wide and low for Cycles, and EEVEE renders them darker: bake again in EEVEE"
+
+
 def restore_world(scene, world):
     """Takes `world`'s lamps, mix and records out; its collection goes when empty; the Cycles settings the add-on
-    and EEVEE settings the add-on set go back once no baked world is left in the scene. Returns a one-line summary
-    ('' if nothing was baked)."""
+    and EEVEE settings the add-on set go back once no baked world is left in the scene. Returns a one-line summary ('' if nothing was baked)."""
     if world is None:
         return ""
     removed = remove_lights(world)
     restored = remove_mix(world)
     collection_gone = remove_collection_if_empty(world)
-    if IMAGE_KEY in world:
-        del world[IMAGE_KEY]
+    for key in (IMAGE_KEY, CONES_KEY):
+        if key in world:
+            del world[key]
     cycles = eevee = []
     if not any(world_collection(w) is not None and scene.user_of_id(world_collection(w)) for w in baked_worlds()):
         cycles = cycles_settings.restore(scene)

@@ -13,15 +13,11 @@ suns the pool cannot hold (before every render, including `blender -b file.blend
 the engine changes to EEVEE; when a file opens in EEVEE), because a full pool is never what the user wants: its
 renders are farther from Cycles and differ from one render to the next (docs/eevee.md). The panel says it was
 done; Restore world undoes it.
-
-At the same moments the suns' cones follow the engine (light_objects.follow_cones): in EEVEE none reaches below the
-horizon, which EEVEE renders darker; in Cycles each has its bake's angle again.
 """
 
 import bpy
 
-from .conversion import sun_cones
-from .light_objects import baked_lights, follow_cones, sun_height
+from .light_objects import baked_lights, sun_height
 from .world_mix import has_residual
 from .remembered import put_back, set_remembering
 
@@ -156,14 +152,9 @@ def _say(scene, changed):
 @bpy.app.handlers.persistent
 def _before_render(scene, *_):
     try:
-        cones = sun_cones(scene.render.engine, bpy.app.version)
-        narrowed = follow_cones(scene, cones)
         changed = follow(scene)
     except (AttributeError, ReferenceError, RuntimeError, TypeError):
         return
-    if narrowed:
-        print("Probe Lights: %d baked suns %s" % (narrowed, "narrowed to stay above the horizon in EEVEE"
-                                                  if cones == "above-horizon" else "given their bake's angles again"))
     if changed:
         _say(scene, changed)
 

@@ -10,8 +10,6 @@ distance from the origin (where their light is measured). Only the lamps of the 
 view layers: switching the scene's world switches the lamps (sync_visibility, run after every depsgraph update).
 """
 
-import math
-
 import bpy
 import numpy as np
 from mathutils import Matrix, Vector
@@ -22,8 +20,6 @@ from .conversion import point_parameters, sun_parameters
 COLLECTION_TAG = "probe_lights_collection"
 WORLD_KEY = "probe_lights_world"  # on the collection: the world it was baked from (an ID pointer)
 OBJECT_TAG = "probe_lights"
-ANGLE_KEY = "probe_lights_angle"  # on a baked sun's data: the angle the bake gave it (follow_cones)
-ANGLE_SET_KEY = "probe_lights_angle_set"  # on a baked sun's data: the angle follow_cones last set
 RIG_TAG = "probe_lights_rig"
 COLLECTION_NAME = "Probe Lights: %s"
 SUN_SCALE = 0.1  # a sun's object scale: its light does not change, its viewport line is a tenth as long
@@ -60,30 +56,6 @@ def sun_height(lamp):
     """|sin| of a sun lamp's elevation as it stands now (rig and drivers applied): a sun shines along its -Z."""
     up = lamp.matrix_world.to_3x3().col[2]
     return min(1.0, abs(up.z) / max(up.length, 1e-12))
-
-
-def follow_cones(scene, cones):
-    """Each baked sun of the scene's world at the angle its bake gave it, or, with `cones` "above-horizon"
-    (conversion.sun_cones: the engine is EEVEE Next), at most the angle whose cone stays above the horizon where the
-    sun now stands: lamps baked in Cycles render right in EEVEE and as baked in Cycles again, with no new bake
-    (docs/eevee.md). A sun whose angle the user changed since keeps it. Returns how many angles changed."""
-    changed = 0
-    for o in baked_lights(scene.world):
-        data = o.data
-        if o.type != "LIGHT" or data.type != "SUN":
-            continue
-        if ANGLE_KEY not in data:  # baked before the cones followed the engine: its angle is the bake's
-            data[ANGLE_KEY] = data[ANGLE_SET_KEY] = data.angle
-        if abs(data.angle - data.get(ANGLE_SET_KEY, data.angle)) > 1e-5:
-            continue  # the user's own angle
-        wanted = float(data[ANGLE_KEY])
-        if cones == "above-horizon":
-            wanted = min(wanted, 2 * math.asin(sun_height(o)))
-        if abs(data.angle - wanted) > 1e-6:
-            data.angle = wanted
-            changed += 1
-        data[ANGLE_SET_KEY] = data.angle  # as stored (float32)
-    return changed
 
 
 def baked_lights(world):
@@ -233,7 +205,7 @@ def make_lights(scene, world, baked, source, light_type=light_kinds.DEFAULT, dis
         obj.parent = holder
         if kind.soft:
             p = sun_parameters(direction, rgb, lights["angle"][i], bpy.app.version)  # the core's angle: fitted or 0
-            data.angle = data[ANGLE_KEY] = data[ANGLE_SET_KEY] = p["angle"]
+            data.angle = p["angle"]
             # Drawn small: the viewport draws a sun's direction line in object space; Cycles and EEVEE use only the
             # sun's direction (tests/blender/test_render.py renders a scaled sun).
             obj.matrix_basis = (Matrix.Translation(tuple(radius * direction)) @

@@ -4,7 +4,7 @@ widths: short labels, enums as buttons, and every long line (results, notes, war
 import bpy
 
 from . import cycles_settings, eevee_settings, light_kinds, native
-from .bake import image_changed
+from .bake import eevee_cones_note, image_changed
 from .light_objects import baked_worlds, world_collection
 from .text_fit import fits, wrap
 from .world_mix import has_mix
@@ -100,6 +100,9 @@ def _draw_results(layout, context, width, measure):
     if changed:
         _lines(layout.column(align=True), "The world now reads '%s': bake again to follow it" % changed, width,
                measure, icon="ERROR")
+    cones = eevee_cones_note(scene)
+    if cones:
+        _lines(layout.column(align=True), cones, width, measure, icon="ERROR")
     if settings.last_count:
         col = layout.column(align=True)
         _lines(col, "%d lights, %.1f %% of the energy, %.0f ms" % (settings.last_count, settings.last_energy,
