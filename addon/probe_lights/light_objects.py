@@ -24,6 +24,9 @@ RIG_TAG = "probe_lights_rig"
 COLLECTION_NAME = "Probe Lights: %s"
 SUN_SCALE = 0.1  # a sun's object scale: its light does not change, its viewport line is a tenth as long
 NOT_SCENERY = {"LIGHT", "CAMERA", "EMPTY", "SPEAKER", "LIGHT_PROBE", "LIGHTPROBE"}
+RAYS_KEY = "probe_lights_rays"  # on a lamp: the rays it lights in Cycles, its bake's split ("diffuse,volume_scatter")
+LAMP_RAYS = ("diffuse", "glossy", "transmission", "volume_scatter")
+EEVEE_ENGINES = {"BLENDER_EEVEE", "BLENDER_EEVEE_NEXT"}
 
 
 def world_collection(world):
@@ -167,8 +170,8 @@ def make_lights(scene, world, baked, source, light_type=light_kinds.DEFAULT, dis
     rig's rotation) and its Background strength (the lamps' energy scale); both are followed by drivers when the
     world sets them with one Mapping node and a constant Strength. Suns get the angle the core gave each light.
 
-    lights_diffuse / lights_glossy: which effects the lamps provide (the world keeps the others, world_mix.py), set
-    both as Cycles ray visibility and as EEVEE's diffuse/specular factors."""
+    lights_diffuse / lights_glossy: which effects the lamps provide in Cycles (the world keeps the others,
+    world_mix.py), set as their ray visibility; in EEVEE they light every effect."""
     collection = _collection(scene, world)
     kind = light_kinds.kind(light_type)
     if kind.on_dome:  # where a sun is does not change its light: around the scene, drawn small
@@ -220,15 +223,17 @@ def make_lights(scene, world, baked, source, light_type=light_kinds.DEFAULT, dis
         else:
             data.driver_remove("energy")
             data.energy = p["energy"] * strength
+        # Cycles routes the lamps by their ray visibility (below) and ignores these factors (3.4.1, 4.5.15, 5.3.0);
+        # EEVEE honours them. EEVEE shows the world to the camera only (world_mix.py), so there the lamps light
+        # everything whatever Cycles keeps of the world: with the specular factor at 0, the default bake rendered a
+        # Glossy BSDF ball black in EEVEE (0.548 lit by the world; tests/blender/test_eevee.py).
         if hasattr(data, "diffuse_factor"):
-            data.diffuse_factor = 1.0 if lights_diffuse else 0.0
-            data.specular_factor = 1.0 if lights_glossy else 0.0
-        obj.visible_diffuse = lights_diffuse
-        obj.visible_glossy = lights_glossy
+            data.diffuse_factor = data.specular_factor = 1.0
         # Transmission goes with reflections: glass refracts the world, which lamps seen through it would light
         # again (a glass sphere 8-12 % too bright; world_mix.py)
-        obj.visible_transmission = lights_glossy
-        obj.visible_volume_scatter = lights_diffuse
+        rays = [r for r, lit in zip(LAMP_RAYS, (lights_diffuse, lights_glossy, lights_glossy, lights_diffuse)) if lit]
+        obj[RAYS_KEY] = ",".join(rays)
+        _show_to(obj, LAMP_RAYS if scene.render.engine in EEVEE_ENGINES else rays)
         # Multiple importance sampling only when the lamps light reflections, in a Cycles with a light tree. With MIS
         # a lamp's light on a many-closure BSDF (Principled) is shared between the lamp's own samples, which Cycles
         # evaluates closure by closure against the lamp's visibility (the glossy closures left out), and rays
@@ -299,12 +304,47 @@ def sync_visibility(scene):
                         _hide_rig(scene, holder)
 
 
+def _show_to(obj, rays):
+    """Makes the lamp light exactly `rays` (LAMP_RAYS names); True if anything changed."""
+    changed = False
+    for ray in LAMP_RAYS:
+        if getattr(obj, "visible_" + ray) != (ray in rays):
+            setattr(obj, "visible_" + ray, ray in rays)
+            changed = True
+    return changed
+
+
+def _shown_to(obj):
+    return {ray for ray in LAMP_RAYS if getattr(obj, "visible_" + ray)}
+
+
+def follow_engine(scene):
+    """The lamps' ray visibility follows the render engine. Cycles keeps the world for the effects the bake's split
+    left to it (reflections by default) and the lamps light the others, routed by ray visibility. EEVEE shows the
+    world to the camera only (world_mix.py), so there the lamps light every effect: EEVEE 4.2 and newer honours a
+    lamp's ray visibility (a Glossy BSDF ball lit by 16 lamps of the default split rendered black; bpy 4.5.15 and
+    5.3.0), EEVEE Legacy does not. A lamp whose visibility is neither of the two (the user's own) is left as it
+    is. Returns how many lamps changed."""
+    eevee = scene.render.engine in EEVEE_ENGINES
+    changed = 0
+    lamps = (o for c in scene.collection.children if c.get(COLLECTION_TAG) for o in c.objects)
+    for obj in lamps:  # the baked collections only: this runs after every depsgraph update
+        if obj.type != "LIGHT" or not obj.get(OBJECT_TAG) or RAYS_KEY not in obj:
+            continue
+        split = {r for r in str(obj[RAYS_KEY]).split(",") if r in LAMP_RAYS}
+        want, other = (set(LAMP_RAYS), split) if eevee else (split, set(LAMP_RAYS))
+        if _shown_to(obj) == other and _show_to(obj, want):
+            changed += 1
+    return changed
+
+
 @bpy.app.handlers.persistent
 def _follow_world(scene, *_):
-    """After every depsgraph update and before every render: the lamps of the scene's world only, and the residual
-    at the world's strength."""
+    """After every depsgraph update and before every render: the lamps of the scene's world only, lighting the rays
+    the engine needs, and the residual at the world's strength."""
     try:
         sync_visibility(scene)
+        follow_engine(scene)
         world_mix.follow_strength(scene.world)
     except (AttributeError, ReferenceError, RuntimeError):
         pass

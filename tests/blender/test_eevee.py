@@ -215,7 +215,79 @@ def test_wide_suns_low_over_the_horizon_render_as_in_cycles():
     assert abs(ratio - 1) < 0.025 and diff < 0.05, (ratio, diff)
 
 
+def test_every_split_lights_every_effect_in_eevee():
+    """EEVEE ignores Cycles' ray visibility, and the add-on shows it the world for the camera only, so in EEVEE the
+    lamps light every effect whatever the panel's split keeps of the world for Cycles (its reflections by default,
+    or its diffuse light): a glossy sphere keeps its reflections and a diffuse plane its light. Before, the lamps'
+    EEVEE factors followed the split: the default bake rendered a Glossy BSDF ball black in EEVEE (0.548 lit by the
+    world, 0 by the lamps; bpy 4.5.15 and 5.3.0)."""
+    harness.empty_scene()
+    harness.addon_module("eevee_settings").restore(bpy.context.scene)
+    harness.env_world(bpy.data.images.load(harness.BUNDLED_PROBE))
+    render_scene.sphere_over_plane(96, 72, 16)
+    scene = bpy.context.scene
+    scene.render.engine = harness.eevee_engine()
+    scene.render.film_transparent = True
+    scene.eevee.taa_render_samples = TAA_SAMPLES
+    mat = bpy.data.materials.new("glossy")
+    if bpy.app.version < (5, 0, 0):
+        mat.use_nodes = True
+    nt = mat.node_tree
+    nt.nodes.remove(nt.nodes["Principled BSDF"])
+    glossy = nt.nodes.new("ShaderNodeBsdfGlossy")
+    glossy.inputs["Roughness"].default_value = 0.3
+    nt.links.new(glossy.outputs[0], nt.nodes["Material Output"].inputs["Surface"])
+    sphere = next(o for o in scene.objects if o.type == "MESH" and len(o.data.vertices) > 4)
+    plane = next(o for o in scene.objects if o.type == "MESH" and o != sphere)
+    sphere.data.materials[0] = mat
+    plane.hide_render = True
+    on_sphere = render_scene.render()[..., 3] > 0.99
+    plane.hide_render = False
+    world_lit = render_scene.render()
+    on_plane = (world_lit[..., 3] > 0.99) & ~on_sphere
+    assert on_sphere.sum() > 200 and on_plane.sum() > 200, (on_sphere.sum(), on_plane.sum())
+
+    def light(picture, where):
+        return float((picture[..., :3] @ LUM)[where].mean())
+
+    for split in ({"replace_diffuse": True, "replace_reflections": False},   # the default
+                  {"replace_diffuse": False, "replace_reflections": True},
+                  {"replace_diffuse": True, "replace_reflections": True}):
+        assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=16, lamps_take="ALL", **split) == {"FINISHED"}
+        baked = render_scene.render()
+        ratios = [light(baked, where) / light(world_lit, where) for where in (on_sphere, on_plane)]
+        print("  EEVEE, lamps replace %s: glossy sphere %.3f, diffuse plane %.3f of the world-lit render" % (
+            " and ".join(k[8:] for k, v in split.items() if v), *ratios))
+        assert all(0.8 < r < 1.25 for r in ratios), (split, ratios)
+
+    # Baked in Cycles (lamps for diffuse light, the world for reflections), then rendered in EEVEE: the lamps light
+    # every effect there, and in Cycles again their split. A lamp the user set otherwise stays as it was set.
+    scene.render.engine = "CYCLES"
+    assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=16, lamps_take="ALL") == {"FINISHED"}
+    lamps = [o for o in scene.objects if o.type == "LIGHT"]
+    rays = ("visible_diffuse", "visible_glossy", "visible_transmission", "visible_volume_scatter")
+
+    def shown(o):
+        return tuple(getattr(o, r) for r in rays)
+
+    assert {shown(o) for o in lamps} == {(True, False, False, True)}
+    users = min(lamps, key=lambda o: o.data.energy)  # the dimmest: the sphere's reflections stay the lamps' own
+    users.visible_volume_scatter = False
+    scene.render.engine = harness.eevee_engine()
+    baked = render_scene.render()
+    ratio = light(baked, on_sphere) / light(world_lit, on_sphere)
+    print("  baked in Cycles, rendered in EEVEE: glossy sphere %.3f of the world-lit render" % ratio)
+    assert 0.8 < ratio < 1.25, ratio
+    assert {shown(o) for o in lamps if o != users} == {(True, True, True, True)}
+    assert shown(users) == (True, False, False, False)
+    scene.render.engine = "CYCLES"
+    bpy.context.view_layer.update()
+    assert {shown(o) for o in lamps if o != users} == {(True, False, False, True)}
+    assert shown(users) == (True, False, False, False)
+    assert bpy.ops.probe_lights.restore() == {"FINISHED"}
+
+
 harness.run([test_world_mix_in_eevee, test_baked_under_cycles_renders_right_in_eevee,
              test_sharp_suns_of_the_sources_fit_the_shadow_pool,
              test_the_panels_count_of_suns_gives_the_fit_their_elevations_give,
-             test_wide_suns_low_over_the_horizon_render_as_in_cycles])
+             test_wide_suns_low_over_the_horizon_render_as_in_cycles, test_every_split_lights_every_effect_in_eevee])
