@@ -7,6 +7,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <string>
 
 #include "probelights/placement.h"
@@ -319,6 +320,46 @@ std::string usdText(const py::dict& lights, const std::string& lightType, double
   return usdDocument(exportedLights(lights), options, "probelights " PROBELIGHTS_VERSION);
 }
 
+// The errors of any lights against a probe (evaluate.h): a bake's, a user's own, another tool's. Each light
+// is drawn as the bake draws it: a direction, its rgb (sum of L dOmega) and, if given, a sun's cone angle.
+// Bad lights are refused, one line naming the first: they would give NaN errors, not a measurement.
+py::dict evaluateLights(Pixels pixels, const py::dict& lightsDict, const std::string& projection,
+                        const std::string& effects, int evaluatorWidth, const std::string& sunProfile,
+                        const std::string& sunCones, const std::string& nonfinite) {
+  const ImageView view = viewOf(pixels);
+  const auto kind = parseProjection(projection);
+  const NonFinitePolicy policy = parseNonFinitePolicy(nonfinite);
+  const Effects e = parseEffects(effects);
+  if (evaluatorWidth < 1)
+    throw Error("evaluator_width takes a width of at least 1 pixel, got '" + std::to_string(evaluatorWidth) +
+                "'");
+  const EvaluatorOptions options{evaluatorWidth, false, parseSunProfile(sunProfile), parseSunCones(sunCones)};
+  std::vector<Light> lights = exportedLights(lightsDict);
+  if (lights.empty()) throw Error("lights is empty: evaluate takes at least one light");
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    Light& l = lights[i];
+    const std::string which = "light " + std::to_string(i) + " ";
+    const double n = l.direction.length();
+    if (!std::isfinite(n) || n <= 0) throw Error(which + "has no direction (zero or not finite)");
+    l.direction = (1 / n) * l.direction;
+    for (double c : l.rgb)
+      if (!std::isfinite(c)) throw Error(which + "has an rgb that is not finite");
+    if (!std::isfinite(l.angle) || l.angle < 0 || l.angle > kPi)
+      throw Error(which + "has an angle outside [0, pi] radians");
+  }
+  EffectErrors errors;
+  {
+    py::gil_scoped_release release;
+    const Probe probe(view, kind, policy);
+    errors = Evaluator(probe, e, options).evaluate(lights);
+  }
+  py::dict d;
+  if (e & kDiffuse) d["diffuse"] = errors.diffuse;
+  if (e & kShadow) d["shadow"] = errors.shadow;
+  if (e & kGlossy) d["glossy"] = errors.glossy;
+  return d;
+}
+
 // Every registered placement method's name (placement.h).
 std::vector<std::string> methodNames() {
   std::vector<std::string> names;
@@ -486,6 +527,14 @@ PYBIND11_MODULE(_probelights, m) {
       "by a DomeLight for reflections alone while the lights take diffuse light alone; or residual: the path "
       "of a residual image saved from a bake with sources, shown by a DomeLight that lights with the lamps "
       "(docs/export.md).");
+  m.def("evaluate", &evaluateLights, py::arg("pixels"), py::arg("lights"), py::kw_only(),
+        py::arg("projection") = "latlong", py::arg("effects") = "diffuse,shadow",
+        py::arg("evaluator_width") = 2048, py::arg("sun_profile") = "cone", py::arg("sun_cones") = "free",
+        py::arg("nonfinite") = "error",
+        "The errors (relative RMS of luminance, evaluate.h) of any lights against the probe on `effects`: "
+        "a dict {effect: error}. lights: a dict of arrays as a bake's result has them, direction (N,3), "
+        "rgb (N,3) (sum of L dOmega) and angle (N,), a sun's full cone angle in radians (0 or absent: "
+        "points). A bake's own lights give its evaluation's errors.");
   m.def(
       "release_memory", [] { releaseKeptBuffers(); },
       "Give back the table buffers kept for the next bake (memory.h: up to two, e.g. 84 MB each for 2K "

@@ -341,3 +341,39 @@ def test_gltf_bad_requests(kwargs, message):
         pl.gltf(r["lights"], **kwargs)
     with pytest.raises(pl.Error, match="no 'rgb'"):
         pl.gltf({"direction": r["lights"]["direction"]})
+
+
+def test_evaluate_gives_a_bakes_own_errors_and_measures_any_lights(bundled_probe):
+    from rgbe import read_hdr
+    pixels = read_hdr(bundled_probe)
+    r = pl.bake(pixels, lights=16, evaluate=True, effects="diffuse,shadow,glossy", evaluator_width=512)
+    got = pl.evaluate(pixels, r["lights"], effects="diffuse,shadow,glossy", evaluator_width=512)
+    for effect in ("diffuse", "shadow", "glossy"):
+        assert got[effect] == pytest.approx(r["evaluation"][effect], rel=1e-12)
+    assert set(pl.evaluate(pixels, r["lights"], evaluator_width=512)) == {"diffuse", "shadow"}
+    # Someone else's lights: the same lights mirrored below the horizon are far off; directions need not be unit.
+    turned = dict(r["lights"], direction=r["lights"]["direction"] * [3.0, 3.0, -3.0])
+    worse = pl.evaluate(pixels, turned, evaluator_width=512)
+    assert worse["shadow"] > 5 * got["shadow"] and worse["diffuse"] > 5 * got["diffuse"]
+    points = {"direction": r["lights"]["direction"], "rgb": r["lights"]["rgb"]}  # no angle: point directions
+    assert pl.evaluate(pixels, points, evaluator_width=512)["shadow"] != got["shadow"]
+
+
+@pytest.mark.parametrize("change, message", [
+    (lambda l: l["direction"].__setitem__(0, 0.0), "light 0 has no direction"),
+    (lambda l: l["rgb"].__setitem__((1, 0), np.nan), "light 1 has an rgb that is not finite"),
+    (lambda l: l["angle"].__setitem__(1, 4.0), r"light 1 has an angle outside \[0, pi\]"),
+    (lambda l: l.__setitem__("rgb", l["rgb"][:1]), "lights' columns differ in length"),
+    (lambda l: l.pop("direction"), "lights has no 'direction'"),
+])
+def test_evaluate_refuses_bad_lights_in_one_line(change, message):
+    pixels = np.ones((8, 16, 3), np.float32)
+    lights = {k: np.array(v, dtype=float) for k, v in pl.bake(pixels, lights=2)["lights"].items()
+              if k in ("direction", "rgb", "angle")}
+    change(lights)
+    with pytest.raises(pl.Error, match=message):
+        pl.evaluate(pixels, lights)
+    with pytest.raises(pl.Error, match="at least one light"):
+        pl.evaluate(pixels, {"direction": np.zeros((0, 3)), "rgb": np.zeros((0, 3))})
+    with pytest.raises(pl.Error, match="no effects given|unknown effect|effects"):
+        pl.evaluate(pixels, lights, effects="sparkle")
