@@ -329,8 +329,12 @@ def follow_engine(scene):
     changed = 0
     lamps = (o for c in scene.collection.children if c.get(COLLECTION_TAG) for o in c.objects)
     for obj in lamps:  # the baked collections only: this runs after every depsgraph update
-        if obj.type != "LIGHT" or not obj.get(OBJECT_TAG) or RAYS_KEY not in obj:
+        if obj.type != "LIGHT" or not obj.get(OBJECT_TAG):
             continue
+        if RAYS_KEY not in obj:  # baked before 2026-12-05 (in Cycles' split, factors 0): adopted once
+            obj[RAYS_KEY] = ",".join(sorted(_shown_to(obj)))
+            if hasattr(obj.data, "diffuse_factor"):
+                obj.data.diffuse_factor = obj.data.specular_factor = 1.0
         split = {r for r in str(obj[RAYS_KEY]).split(",") if r in LAMP_RAYS}
         want, other = (set(LAMP_RAYS), split) if eevee else (split, set(LAMP_RAYS))
         if _shown_to(obj) == other and _show_to(obj, want):

@@ -535,6 +535,30 @@ def test_a_bake_by_version_0_1_is_adopted():
     assert not [o for o in scene.objects if o.get(light_objects.OBJECT_TAG)]
 
 
+def test_lamps_of_an_earlier_bake_light_every_effect_in_eevee():
+    """Lamps baked before their ray visibility followed the engine (no split kept, EEVEE's specular factor 0) are
+    adopted as they are found: their visibility is their Cycles split, EEVEE gets every effect."""
+    harness.empty_scene()
+    scene = bpy.context.scene
+    scene.render.engine = "CYCLES"
+    bright_spot_world((40, 20))
+    lamps = bake(count=4, replace_reflections=False)
+    for o in lamps:  # as the add-on left them until 2026-12-05
+        del o[light_objects.RAYS_KEY]
+        if hasattr(o.data, "specular_factor"):
+            o.data.specular_factor = 0.0
+    rays = ("visible_diffuse", "visible_glossy", "visible_transmission", "visible_volume_scatter")
+    scene.render.engine = harness.eevee_engine()
+    light_objects.follow_engine(scene)
+    for o in lamps:
+        assert [getattr(o, r) for r in rays] == [True] * 4, o.name
+        assert not hasattr(o.data, "specular_factor") or o.data.specular_factor == 1.0
+    scene.render.engine = "CYCLES"
+    light_objects.follow_engine(scene)
+    assert {tuple(getattr(o, r) for r in rays) for o in lamps} == {(True, False, False, True)}
+    assert bpy.ops.probe_lights.restore() == {"FINISHED"}
+
+
 def test_the_bakes_nodes_are_framed_beside_the_users():
     harness.empty_scene()
     world = bright_spot_world((40, 20), rotation=(0.1, 0.2, 0.3))
@@ -785,6 +809,7 @@ harness.run([test_register_unregister, test_real_probes_bake_with_their_energy,
              test_point_lights_give_the_same_irradiance_at_the_origin,
              test_lamps_follow_the_worlds_rotation_and_strength, test_suns_on_a_dome_around_the_scene_under_one_rig,
              test_worlds_keep_their_own_lamps_and_mix, test_a_bake_by_version_0_1_is_adopted,
+             test_lamps_of_an_earlier_bake_light_every_effect_in_eevee,
              test_the_bakes_nodes_are_framed_beside_the_users,
              test_tolerance_never_backfires, test_cycles_settings_offer_and_restore,
              test_eevee_shadow_pool_follows_the_scene_and_restore, test_the_read_buffer_is_reused_only_when_nobody_holds_it,
