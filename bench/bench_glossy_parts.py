@@ -7,9 +7,12 @@ default Principled BSDF at roughness 0.2, 0.5 and 1.0, render_scene.glossy_spher
   split the add-on's default bake, LAMPS lamps (64 unless given; Lamps take: All of the light: lamps for diffuse
         light, the world's visibility left to reflections);
   L     the same lamps with the world hidden from every ray but the camera's: the lamps alone;
+  Dm    the world and the default bake again with every material a plain diffuse BSDF (0.8): the bound diffuse
+        materials give in this scene, which issue 30 holds glossy ones to;
 and prints, each a third of the picture against its reference (render_scene.block_difference, %): noise; D + G
 against full (what Cycles' own split of the world costs); the default bake against full; L + G against full (the
-lamps and the world's reflections rendered apart); L against D (the lamps against the world's diffuse light).
+lamps and the world's reflections rendered apart); L against D (the lamps against the world's diffuse light); the
+diffuse materials' default bake against their world.
 
     tests/blender/run.sh ~/.cache/probelights/bpy-4.5.15/bin/python bench/bench_glossy_parts.py \\
         build/probe_lights-0.1.0-linux_x64.zip ../shared [NAME,NAME,... [SAMPLES [LAMPS]]]
@@ -39,6 +42,16 @@ def visible_to(world, *rays):
         setattr(world.cycles_visibility, ray, ray in rays)
 
 
+def with_materials(mats):
+    """Gives every mesh the materials `mats` (object name -> material); returns the ones they had."""
+    kept = {}
+    for o in bpy.data.objects:
+        if o.type == "MESH":
+            kept[o.name] = o.data.materials[0]
+            o.data.materials[0] = mats[o.name]
+    return kept
+
+
 def added(a, b):
     out = a.copy()
     out[..., :3] = a[..., :3] + b[..., :3]
@@ -46,8 +59,8 @@ def added(a, b):
 
 
 print("| probe | noise (seed 2) | world split by visibility, D + G | default bake, %d lamps | lamps alone + G | "
-      "lamps alone against D |" % LAMPS)
-print("|---|---|---|---|---|---|")
+      "lamps alone against D | diffuse materials, default bake |" % LAMPS)
+print("|---|---|---|---|---|---|---|")
 for probe in PROBES:
     scene = render_scene.glossy_probe_scene(probe, SAMPLES)
     world = scene.world
@@ -55,6 +68,10 @@ for probe in PROBES:
     scene.cycles.seed = 2
     noise = render_scene.render()
     scene.cycles.seed = 1
+    diffuse = render_scene.diffuse_material(0.8)
+    principled = with_materials({o.name: diffuse for o in bpy.data.objects if o.type == "MESH"})
+    full_diffuse = render_scene.render()
+    with_materials(principled)
     visible_to(world, "camera", "diffuse", "scatter")
     d = render_scene.render()
     visible_to(world, "glossy", "transmission")
@@ -66,10 +83,13 @@ for probe in PROBES:
     visible_to(world, *[ray for ray in RAYS if kept[ray] and ray not in ("glossy", "transmission")])
     lamps = render_scene.render()
     visible_to(world, *[ray for ray in RAYS if kept[ray]])
+    with_materials({name: diffuse for name in principled})
+    split_diffuse = render_scene.render()
+    with_materials(principled)
     diff = render_scene.thirds_difference
-    print("| %s | %s | %s | %s | %s | %s |" % (
+    print("| %s | %s | %s | %s | %s | %s | %s |" % (
         os.path.basename(probe), diff(full, noise), diff(full, added(d, g)), diff(full, split),
-        diff(full, added(lamps, g)), diff(d, lamps)),
+        diff(full, added(lamps, g)), diff(d, lamps), diff(full_diffuse, split_diffuse)),
         flush=True)
 print("Blender %s, %d Cycles samples; each cell: roughness %s, %% from its reference" % (
     bpy.app.version_string, SAMPLES, " / ".join("%g" % r for r in render_scene.ROUGHNESS)))
