@@ -45,17 +45,8 @@ def ball_scene(probe):
     scene = bpy.context.scene
     bpy.ops.mesh.primitive_uv_sphere_add(radius=1, location=(0, 0, 0), segments=128, ring_count=64)
     bpy.ops.object.shade_smooth()
-    mat = bpy.data.materials.new("glossy")
-    if bpy.app.version < (5, 0, 0):
-        mat.use_nodes = True
-    nt = mat.node_tree
-    for node in list(nt.nodes):
-        if node.type != "OUTPUT_MATERIAL":
-            nt.nodes.remove(node)
-    glossy = nt.nodes.new("ShaderNodeBsdfGlossy")
+    mat, glossy = render_scene.bsdf_material("glossy", "ShaderNodeBsdfGlossy", Color=(1, 1, 1, 1))
     glossy.distribution = "GGX"
-    glossy.inputs["Color"].default_value = (1, 1, 1, 1)
-    nt.links.new(glossy.outputs[0], nt.nodes["Material Output"].inputs["Surface"])
     bpy.context.active_object.data.materials.append(mat)
     cam = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
     cam.data.type = "ORTHO"
@@ -64,17 +55,7 @@ def ball_scene(probe):
     cam.rotation_euler = (math.radians(90), 0, 0)
     scene.collection.objects.link(cam)
     scene.camera = cam
-    r = scene.render
-    r.engine = "CYCLES"
-    r.resolution_x = r.resolution_y = SIZE
-    r.resolution_percentage = 100
-    r.film_transparent = True
-    r.image_settings.file_format = "OPEN_EXR"
-    r.image_settings.color_depth = "32"
-    c = scene.cycles
-    c.samples, c.use_adaptive_sampling, c.use_denoising, c.seed = SAMPLES, False, False, 1
-    c.max_bounces = 1
-    c.sample_clamp_indirect = 0.0
+    render_scene.cycles_output(scene, SIZE, SIZE, SAMPLES, bounces=1, transparent=True)
     return scene, glossy
 
 

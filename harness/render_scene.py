@@ -12,16 +12,38 @@ LUM = np.array([0.2126, 0.7152, 0.0722])
 BLOCK = 8
 
 
-def diffuse_material(albedo=0.8):
-    mat = bpy.data.materials.new("diffuse")
+def bsdf_material(name, node_type, **inputs):
+    """A material of one BSDF node (e.g. "ShaderNodeBsdfGlossy") with the given inputs set. Returns (material,
+    node)."""
+    mat = bpy.data.materials.new(name)
     if bpy.app.version < (5, 0, 0):  # 5.0 always uses a material's nodes (Material.use_nodes deprecated)
         mat.use_nodes = True
     nt = mat.node_tree
     nt.nodes.remove(nt.nodes["Principled BSDF"])
-    d = nt.nodes.new("ShaderNodeBsdfDiffuse")
-    d.inputs["Color"].default_value = (albedo, albedo, albedo, 1)
-    nt.links.new(d.outputs[0], nt.nodes["Material Output"].inputs["Surface"])
-    return mat
+    node = nt.nodes.new(node_type)
+    for socket, value in inputs.items():
+        node.inputs[socket].default_value = value
+    nt.links.new(node.outputs[0], nt.nodes["Material Output"].inputs["Surface"])
+    return mat, node
+
+
+def diffuse_material(albedo=0.8):
+    return bsdf_material("diffuse", "ShaderNodeBsdfDiffuse", Color=(albedo, albedo, albedo, 1))[0]
+
+
+def cycles_output(scene, width, height, samples, bounces, transparent):
+    """Cycles at `samples` (not adaptive, not denoised, seed 1), `bounces`, no clamp, to a 32-bit EXR of width x
+    height."""
+    r = scene.render
+    r.engine = "CYCLES"
+    r.resolution_x, r.resolution_y, r.resolution_percentage = width, height, 100
+    r.film_transparent = transparent
+    r.image_settings.file_format = "OPEN_EXR"
+    r.image_settings.color_depth = "32"
+    c = scene.cycles
+    c.samples, c.use_adaptive_sampling, c.use_denoising, c.seed = samples, False, False, 1
+    c.max_bounces = bounces
+    c.sample_clamp_indirect = 0.0  # the reference must be unbiased (Blender 3.x defaults to 10)
 
 
 def sphere_over_plane(width, height, samples):
@@ -38,18 +60,7 @@ def sphere_over_plane(width, height, samples):
     cam.data.lens = 35
     scene.collection.objects.link(cam)
     scene.camera = cam
-    r = scene.render
-    r.engine = "CYCLES"
-    r.resolution_x, r.resolution_y, r.resolution_percentage = width, height, 100
-    r.film_transparent = True
-    r.image_settings.file_format = "OPEN_EXR"
-    r.image_settings.color_depth = "32"
-    scene.cycles.samples = samples
-    scene.cycles.use_adaptive_sampling = False
-    scene.cycles.use_denoising = False
-    scene.cycles.seed = 1
-    scene.cycles.max_bounces = 4
-    scene.cycles.sample_clamp_indirect = 0.0  # the reference must be unbiased (Blender 3.x defaults to 10)
+    cycles_output(scene, width, height, samples, bounces=4, transparent=True)
 
 
 ROUGHNESS = (0.2, 0.5, 1.0)
@@ -129,21 +140,9 @@ def ground_under_sphere(samples, size=16):
     cam.data.ortho_scale = 5.0
     scene.collection.objects.link(cam)
     scene.camera = cam
-    r = scene.render
-    r.engine = "CYCLES"
-    r.resolution_x = r.resolution_y = size
-    r.resolution_percentage = 100
-    r.film_transparent = False
-    r.image_settings.file_format = "OPEN_EXR"
-    r.image_settings.color_depth = "32"
-    c = scene.cycles
-    c.samples = samples
-    c.use_adaptive_sampling = False
-    c.use_denoising = False
-    c.seed = 1
-    c.max_bounces = 0
-    c.filter_width = 0.01
-    c.sample_clamp_direct = c.sample_clamp_indirect = 0.0
+    cycles_output(scene, size, size, samples, bounces=0, transparent=False)
+    scene.cycles.filter_width = 0.01
+    scene.cycles.sample_clamp_direct = 0.0
 
 
 def ground_points(size=16):

@@ -229,14 +229,7 @@ def test_every_split_lights_every_effect_in_eevee():
     scene.render.engine = harness.eevee_engine()
     scene.render.film_transparent = True
     scene.eevee.taa_render_samples = TAA_SAMPLES
-    mat = bpy.data.materials.new("glossy")
-    if bpy.app.version < (5, 0, 0):
-        mat.use_nodes = True
-    nt = mat.node_tree
-    nt.nodes.remove(nt.nodes["Principled BSDF"])
-    glossy = nt.nodes.new("ShaderNodeBsdfGlossy")
-    glossy.inputs["Roughness"].default_value = 0.3
-    nt.links.new(glossy.outputs[0], nt.nodes["Material Output"].inputs["Surface"])
+    mat = render_scene.bsdf_material("glossy", "ShaderNodeBsdfGlossy", Roughness=0.3)[0]
     sphere = next(o for o in scene.objects if o.type == "MESH" and len(o.data.vertices) > 4)
     plane = next(o for o in scene.objects if o.type == "MESH" and o != sphere)
     sphere.data.materials[0] = mat

@@ -200,14 +200,7 @@ def test_glass_refracts_the_world_once():
     sphere = next(o for o in bpy.data.objects if o.type == "MESH" and "Sphere" in o.name)
     middle = (slice(height * 20 // 72, height * 52 // 72), slice(width * 36 // 96, width * 60 // 96))
     for roughness in (0.0, 0.3):
-        mat = bpy.data.materials.new("glass")
-        if bpy.app.version < (5, 0, 0):
-            mat.use_nodes = True
-        nt = mat.node_tree
-        nt.nodes.remove(nt.nodes["Principled BSDF"])
-        glass = nt.nodes.new("ShaderNodeBsdfGlass")
-        glass.inputs["Roughness"].default_value = roughness
-        nt.links.new(glass.outputs[0], nt.nodes["Material Output"].inputs["Surface"])
+        mat = render_scene.bsdf_material("glass", "ShaderNodeBsdfGlass", Roughness=roughness)[0]
         sphere.data.materials.clear()
         sphere.data.materials.append(mat)
         assert bpy.ops.probe_lights.restore() in ({"FINISHED"}, {"CANCELLED"})
