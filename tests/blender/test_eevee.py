@@ -216,11 +216,11 @@ def test_wide_suns_low_over_the_horizon_render_as_in_cycles():
 
 
 def test_every_split_lights_every_effect_in_eevee():
-    """EEVEE ignores Cycles' ray visibility, and the add-on shows it the world for the camera only, so in EEVEE the
-    lamps light every effect whatever the panel's split keeps of the world for Cycles (its reflections by default,
-    or its diffuse light): a glossy sphere keeps its reflections and a diffuse plane its light. Before, the lamps'
-    EEVEE factors followed the split: the default bake rendered a Glossy BSDF ball black in EEVEE (0.548 lit by the
-    world, 0 by the lamps; bpy 4.5.15 and 5.3.0)."""
+    """The add-on shows EEVEE the world for the camera only, so in EEVEE the lamps light every effect whatever the
+    panel's split keeps of the world for Cycles (its reflections by default, or its diffuse light): a glossy sphere
+    keeps its reflections and a diffuse plane its light. Before, the lamps' specular factor (honoured by every EEVEE)
+    and ray visibility (honoured by EEVEE 4.2+) followed the Cycles split: the default bake rendered a Glossy BSDF
+    ball black in EEVEE (0.548 lit by the world, 0 by the lamps; 3.4.1, 4.5.15 and 5.3.0)."""
     harness.empty_scene()
     harness.addon_module("eevee_settings").restore(bpy.context.scene)
     harness.env_world(bpy.data.images.load(harness.BUNDLED_PROBE))
