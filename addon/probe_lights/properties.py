@@ -48,9 +48,11 @@ def bake_settings():
         "distance": FloatProperty(name="Distance", default=10.0, min=0.01, unit="LENGTH",
                                   description="How far from the origin point lights are placed"),
         "replace_diffuse": BoolProperty(name="Diffuse + shadows", default=True,
-                                        description="Lights give diffuse light and shadows; the world no longer does"),
+                                        description="Lights give diffuse light and shadows; the world no longer does "
+                                                    "(Cycles; in EEVEE the lights give every effect)"),
         "replace_reflections": BoolProperty(name="Reflections", default=False,
-                                            description="Lights give reflections; the world no longer does"),
+                                            description="Lights give reflections; the world no longer does (Cycles; "
+                                                        "in EEVEE the lights give every effect)"),
         "replace_background": BoolProperty(name="Background", default=False,
                                            description="Hide the world from the camera"),
         "lamps_take": EnumProperty(name="Lamps take", items=LAMPS_TAKE, default="ALL"),
