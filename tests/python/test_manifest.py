@@ -42,3 +42,25 @@ def test_the_panel_offers_every_placement_method_the_core_registers():
     offered = [item[0] for item in ast.literal_eval(methods)]
     assert offered[:2] == ["auto", "both"]  # the two cut choices, then the placement methods
     assert sorted(offered[2:]) == sorted(pl.methods)  # the panel orders them its own way
+
+
+def test_one_version_everywhere():
+    # Written once, in the manifest: pyproject.toml's regex reads it for the Python package, CMake for the
+    # command, the modules and the zips' names; bl_info (which Blender 3.4 reads as a literal) must agree.
+    import re
+    import subprocess
+    import _probelights as pl
+    root = os.path.join(ADDON, "..", "..")
+    version = tomllib.load(open(os.path.join(ADDON, "blender_manifest.toml"), "rb"))["version"]
+    project = tomllib.load(open(os.path.join(root, "pyproject.toml"), "rb"))
+    rule = project["tool"]["scikit-build"]["metadata"]["version"]
+    assert "version" in project["project"]["dynamic"]
+    assert os.path.normpath(os.path.join(root, rule["input"])) == os.path.normpath(
+        os.path.join(ADDON, "blender_manifest.toml"))
+    assert re.search(rule["regex"], open(os.path.join(root, rule["input"])).read()).group("value") == version
+    assert pl.__version__ == version
+    build = os.environ.get("PROBELIGHTS_BUILD", os.path.join(root, "build"))
+    out = subprocess.run([os.path.join(build, "bin", "probelights"), "--version"], capture_output=True, text=True)
+    assert out.stdout.strip() == "probelights " + version
+    assert ".".join(str(v) for v in bl_info()["version"]) == version
+    assert os.path.exists(os.path.join(build, "probe_lights-%s-linux_x64.zip" % version))
