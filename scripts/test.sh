@@ -12,6 +12,9 @@ case "${1:-}" in
 esac
 scripts/install-deps.sh --test
 scripts/usd-env.sh >/dev/null  # usd-core for the USD read-back test (downloads only the first time)
+# Blender's own extension tool of the oldest and newest pinned Blender (validate, server-generate): the build
+# writes build/repository with it and the tests validate every zip with both (addon/extension-tools).
+awk '!/^#/ && NF {print $2}' addon/extension-tools | while read -r version; do scripts/blender-ext.sh "$version" >/dev/null; done
 if ! $quick; then
   # Blender as a Python module, each pinned version in a cached virtual environment (downloads only the first time).
   grep -E '^[0-9]' tests/blender/bpy-versions | while read -r version; do scripts/bpy-env.sh "$version" >/dev/null; done
