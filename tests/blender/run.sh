@@ -33,4 +33,4 @@ else
   command=("$blender" -b --factory-startup -noaudio --python-exit-code 1 --python "$test")
 fi
 "${command[@]}" -- --zip "$zip" --shared "$shared" "$@" 2>&1 |
-  grep -vE '^(Fra:|Read prefs|Saved: |Info: Saved|Blender quit| Time: |ERROR \(bke.lib_id_delete\))|^[0-9:.]+ +render +\| Saved:'
+  grep -vE '^(PROGRESS \[|Fra:|Read prefs|Saved: |Info: Saved|Blender quit| Time: |ERROR \(bke.lib_id_delete\))|^[0-9:.]+ +render +\| Saved:'

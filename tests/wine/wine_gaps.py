@@ -12,6 +12,9 @@ Nothing here runs on real Windows (patch() returns at once when ntdll has no win
   image load fails ("couldn't get mapping"). The export's name is changed in kernelbase's export table in memory
   (MapViewOfFile3 -> MapViewOfFile0, which keeps the table sorted), so Blender takes its own fallback, the plain
   CreateFileMapping and MapViewOfFile that Blender used before and Wine supports.
+- Python 3.13's shutil copies files with kernel32's CopyFile2 where _winapi has it; Wine 8 does not implement it
+  and ends the process (Blender's extension installer copies with shutil): _winapi's CopyFile2 is removed, so
+  shutil copies as it did before 3.13, by reading and writing.
 """
 
 import ctypes
@@ -82,4 +85,8 @@ def patch():
         patched.append(name)
     if rename_export(kernel, "kernelbase.dll", b"MapViewOfFile3", b"MapViewOfFile0"):
         patched.append("MapViewOfFile3")
+    import _winapi
+    if hasattr(_winapi, "CopyFile2"):  # shutil copies with it when it is there (3.13)
+        del _winapi.CopyFile2
+        patched.append("CopyFile2")
     return patched
