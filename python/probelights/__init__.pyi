@@ -1,0 +1,67 @@
+# Types of the probelights package for editors and type checkers. The functions are the native module's
+# (native/python/module.cpp); tests/python/test_package.py holds each signature here to the module's own.
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+build: str
+"""'full': reads files with OpenImageIO (bake_file); 'pixels': the add-on's portable build, pixels only."""
+max_refit_lights: int
+"""The most lights a bake with refit=True takes."""
+methods: list[str]
+"""Every placement method's name, as method= takes it."""
+
+class Error(ValueError):
+    """A bad input or option: its message is one line, the command line's."""
+
+Pixels = npt.NDArray[np.float32]
+Lights = dict[str, npt.NDArray[np.float64]]
+
+def bake(pixels: Pixels, *, projection: str = "latlong", **options: Any) -> dict[str, Any]:
+    """Bake a probe given as a float32 H x W x C array (rows top to bottom; not copied). Returns the layout of the
+    command's JSON: source, method, lights (direction (N,3), rgb (N,3), solid_angle, angular_radius,
+    energy_share (N,), rect (N,4)), total_rgb, timings_ms, notes, and evaluation when asked for. options:
+    lights, max_error, method, evaluate, effects, refit, ... (help(probelights.bake) lists them all)."""
+
+def bake_file(path: str, *, projection: str = "auto", **options: Any) -> dict[str, Any]:
+    """Read a probe with OpenImageIO and bake it: bake()'s dict, with source.path and timings_ms.load."""
+
+def bake_files(paths: Sequence[str], *, projection: str = "auto", **options: Any) -> list[dict[str, Any]]:
+    """Bake many probes (files, directories, globs) in order: bake_file()'s dicts, {'source', 'error'} for one
+    that failed."""
+
+def tradeoff(pixels: Pixels, *, projection: str = "latlong", effects: str = "diffuse,shadow",
+             counts: Sequence[int] = ..., methods: Sequence[str] = ..., refit: bool = True,
+             evaluator_width: int = 2048, sun_profile: str = "cone", sun_cones: str = "free",
+             nonfinite: str = "error") -> dict[str, Any]:
+    """What accuracy costs in time: one row per (method, count, refit) with its bake time and errors."""
+
+def evaluate(pixels: Pixels, lights: Lights, *, projection: str = "latlong", effects: str = "diffuse,shadow",
+             evaluator_width: int = 2048, sun_profile: str = "cone", sun_cones: str = "free",
+             nonfinite: str = "error") -> dict[str, float]:
+    """The errors (relative RMS of luminance) of any lights (direction, rgb, angle) against the probe."""
+
+def gltf(lights: Lights, *, light_type: str = "sun", distance: float = 10.0) -> str:
+    """glTF 2.0 text (KHR_lights_punctual) of a bake's lights: suns in lux or points in candela."""
+
+def usd(lights: Lights, *, light_type: str = "sun", distance: float = 10.0, reflections: str = "",
+        residual: str = "") -> str:
+    """USD text (usda, UsdLux) of a bake's lights."""
+
+def sh_project(pixels: Pixels, *, bands: int, projection: str = "latlong", window: str = "none",
+               irradiance: bool = False, nonfinite: str = "error") -> npt.NDArray[np.float64]:
+    """Real SH coefficients (bands^2 x 3)."""
+
+def sh_sample(pixels: Pixels, *, bands: int, epsilon: float = 0.01, samples: int = 1024, depth: int = 8,
+              seed: int = 1, projection: str = "latlong",
+              nonfinite: str = "error") -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+    """(directions (N,3), pdf (N,)) from the SH importance sampler of the probe's luminance."""
+
+def touch_pages(buffer: Pixels) -> None:
+    """Map a new float32 buffer's memory from all threads before a single-threaded writer fills it."""
+
+def release_memory() -> None:
+    """Give back the table buffers kept for the next bake."""

