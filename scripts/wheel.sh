@@ -17,7 +17,9 @@ if [[ ! -f $tools/.complete ]]; then
 fi
 raw=$(mktemp -d)
 trap 'rm -rf "$raw"' EXIT
-"$python" -m pip wheel -q --disable-pip-version-check --no-deps -w "$raw" "$root" >&2
+# pip from a virtual environment of that Python (a CPython built by scripts/cpython.sh may have no pip of its own).
+"$python" -m venv "$raw/venv" >&2
+"$raw/venv/bin/pip" wheel -q --disable-pip-version-check --no-deps -w "$raw" "$root" >&2
 mkdir -p "$out"
 PATH=$tools/bin:$PATH auditwheel repair --exclude 'libOpenImageIO*' -w "$raw/repaired" "$raw"/probelights-*.whl >&2
 wheel=$(ls "$raw"/repaired/probelights-*.whl)
