@@ -8,10 +8,7 @@
 # downloaded through pip with this machine's configuration, only these two files kept).
 set -euo pipefail
 version=$1
-case "$version" in
-  4.*|5.0.*) py=3.11 ;;
-  *)         py=3.13 ;;
-esac
+py=$(bash "$(dirname "$0")/lib/bpy-python.sh" "$version")
 cache=${PROBELIGHTS_CACHE:-$HOME/.cache/probelights}
 dir=$cache/blender-ext-$version
 if [[ -f $dir/.complete ]]; then echo "$dir"; exit 0; fi

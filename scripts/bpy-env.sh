@@ -5,10 +5,7 @@
 # repository (PROBELIGHTS_CACHE, default ~/.cache/probelights) so a second run downloads nothing.
 set -euo pipefail
 version=$1
-case "$version" in
-  4.*|5.0.*) py=3.11 ;;
-  *)         py=3.13 ;;
-esac
+py=$(bash "$(dirname "$0")/lib/bpy-python.sh" "$version")
 cache=${PROBELIGHTS_CACHE:-$HOME/.cache/probelights}
 env=$cache/bpy-$version
 if [[ -x $env/bin/python && -f $env/.complete ]]; then echo "$env"; exit 0; fi
