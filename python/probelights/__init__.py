@@ -21,7 +21,8 @@ __all__ = ["Error", "bake", "bake_file", "bake_files", "build", "evaluate", "glt
 def __getattr__(name):
     if name in __all__:
         from . import _probelights
-        return getattr(_probelights, name)
+        globals().update({n: getattr(_probelights, n) for n in __all__})  # loaded once: later lookups are plain
+        return globals()[name]
     raise AttributeError("module 'probelights' has no attribute %r" % name)
 
 

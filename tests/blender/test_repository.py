@@ -80,6 +80,11 @@ def installed_manifest():
     return open(path).read() if os.path.exists(path) else ""
 
 
+def light_objects():
+    """The installed add-on's light_objects (the update installs it anew)."""
+    return harness.addon_module("light_objects")
+
+
 def sync():
     index, _ = repo()
     assert bpy.ops.extensions.repo_sync(repo_index=index) == {"FINISHED"}
@@ -96,11 +101,6 @@ def listing(platform=None):
         platform=platform or blender_ext.platform_from_this_system(), blender_version=tuple(bpy.app.version),
         python_version=tuple(sys.version_info[:3]))
     return [item for item in items if not bl_extension_utils.repository_filter_skip(item, params, print)]
-
-
-def scene_render():
-    """A small Cycles still of the sphere over the plane (the render tests' scene), fixed seed."""
-    return render_scene.render()
 
 
 def test_a_repository_installs_updates_and_uninstalls():
@@ -128,7 +128,6 @@ def test_a_repository_installs_updates_and_uninstalls():
     assert module in prefs.addons, [a.module for a in prefs.addons]
     assert manifest_version(installed_manifest()) == version
     harness.ADDON = module
-    light_objects = harness.addon_module("light_objects")
 
     # Bake the bundled probe in the render tests' scene and save it.
     harness.empty_scene()
@@ -136,9 +135,9 @@ def test_a_repository_installs_updates_and_uninstalls():
     before_bake = harness.tree_snapshot(world)
     render_scene.sphere_over_plane(64, 48, 16)
     assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=8) == {"FINISHED"}
-    lamps = sorted(o.name for o in light_objects.baked_lights(world))
+    lamps = sorted(o.name for o in light_objects().baked_lights(world))
     assert len(lamps) == 8
-    first = scene_render()
+    first = render_scene.render()
     saved = os.path.join(WORK, "baked.blend")
     bpy.ops.wm.save_as_mainfile(filepath=saved)
 
@@ -159,22 +158,17 @@ def test_a_repository_installs_updates_and_uninstalls():
     # The scene baked and saved under the old version opens, renders the same and restores.
     bpy.ops.wm.open_mainfile(filepath=saved)
     world = bpy.context.scene.world
-    assert sorted(o.name for o in light_objects_now().baked_lights(world)) == lamps
-    again = scene_render()
+    assert sorted(o.name for o in light_objects().baked_lights(world)) == lamps
+    again = render_scene.render()
     assert np.array_equal(first, again), float(np.abs(first - again).max())
     assert bpy.ops.probe_lights.restore() == {"FINISHED"}
-    assert not light_objects_now().baked_lights(world)
+    assert not light_objects().baked_lights(world)
     assert harness.tree_snapshot(world) == before_bake
 
     # And it uninstalls: disabled, its files gone.
     assert bpy.ops.extensions.package_uninstall(repo_index=index_number, pkg_id=PACKAGE) == {"FINISHED"}
     assert module not in prefs.addons
     assert not installed_manifest()
-
-
-def light_objects_now():
-    """The installed add-on's light_objects (the module reloaded by the update)."""
-    return harness.addon_module("light_objects")
 
 
 harness.run([test_a_repository_installs_updates_and_uninstalls])
