@@ -29,10 +29,12 @@ def register():
     properties.register()
     light_objects.register()
     eevee_settings.register()
+    ui.register()
 
 
 def unregister():
     world_image.unregister()
+    ui.unregister()
     eevee_settings.unregister()
     native.unregister()
     light_objects.unregister()

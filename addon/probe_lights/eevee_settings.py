@@ -37,7 +37,8 @@ MARGIN = 1.1  # the page count varies a little with the view
 MAX_POOL_MB = 1024  # Blender 5.2 offers 2 GB, which failed here ("Could not allocate shadow atlas": nothing rendered)
 
 
-def _eevee_next(scene):
+def eevee_next(scene):
+    """Whether the scene renders in EEVEE Next (Blender 4.2 and newer), which keeps every shadow in one pool."""
     return bpy.app.version >= (4, 2, 0) and scene.render.engine in ("BLENDER_EEVEE_NEXT", "BLENDER_EEVEE")
 
 
@@ -59,7 +60,7 @@ def sun_pages(scene):
     return total
 
 
-def _pools(scene):
+def pool_sizes(scene):
     """The pool sizes this Blender offers, in MB, smallest first."""
     items = scene.eevee.bl_rna.properties["shadow_pool_size"].enum_items
     return sorted(int(item.identifier) for item in items)
@@ -87,7 +88,7 @@ def _wanted_for(scene, load):
     if _pages(load, scale) <= int(eevee.shadow_pool_size) * PAGES_PER_MB:
         return {}
     pool = int(eevee.shadow_pool_size)
-    pools = [mb for mb in _pools(scene) if pool <= mb <= max(pool, MAX_POOL_MB)]  # never smaller than the user's
+    pools = [mb for mb in pool_sizes(scene) if pool <= mb <= max(pool, MAX_POOL_MB)]  # never smaller than the user's
     for try_scale in [scale] + [s for s, _ in RESOLUTION_SHARE if s < scale - 1e-6]:
         fits = [mb for mb in pools if mb * PAGES_PER_MB >= _pages(load, try_scale)]
         if fits:
@@ -101,7 +102,7 @@ def _wanted_for(scene, load):
 def advice(scene, suns):
     """One line on what the shadow pool lacks for the `suns` baked suns, or '' when it holds them (or the engine is
     not EEVEE Next)."""
-    if not _eevee_next(scene) or suns < 2 or not _wanted(scene, suns):
+    if not eevee_next(scene) or suns < 2 or not _wanted(scene, suns):
         return ""
     return ("EEVEE's shadow pool is too small for %d suns and drops shadows at random: fit the shadows to the lamps"
             % suns)
@@ -110,7 +111,7 @@ def advice(scene, suns):
 def apply(scene):
     """Sets the pool (and resolution) the baked suns need, remembering what it replaced (once). Returns
     {name: value}."""
-    if not _eevee_next(scene):
+    if not eevee_next(scene):
         return {}
     wanted = _wanted(scene)
     set_remembering(scene, BEFORE_KEY, scene.eevee, wanted)
@@ -136,7 +137,7 @@ def fitted(scene):
 def follow(scene):
     """Fits the shadow pool to the scene's baked suns when it renders in EEVEE Next and the pool cannot hold them.
     Returns what it set ({} when nothing was needed)."""
-    if not _eevee_next(scene):
+    if not eevee_next(scene):
         return {}
     suns = baked_suns(scene)
     if suns < 2 or not _wanted(scene, suns):

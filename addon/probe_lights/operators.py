@@ -5,7 +5,7 @@ import time
 
 import bpy
 
-from . import cycles_settings, eevee_settings, native
+from . import cycles_settings, eevee_settings, native, probe_volumes
 from .bake import RENDER_WIDTH, bake_world, needs_render, report_lines, restore_world, world_probe
 from .conversion import sun_cones, sun_profile
 from .errors import ProbeError
@@ -277,5 +277,30 @@ class PROBE_LIGHTS_OT_eevee_settings(bpy.types.Operator):
         return {"FINISHED"}
 
 
+class PROBE_LIGHTS_OT_bake_light_probes(bpy.types.Operator):
+    """Bake EEVEE's light probe volumes with the baked suns: the shadow pool made room for the bake, and past what
+    the largest holds, the bake sees the brightest suns carrying the others' light; all put back after"""
+
+    bl_idname = "probe_lights.bake_light_probes"
+    bl_label = "Bake light probes with the lamps"
+    bl_options = {"REGISTER", "UNDO"}
+
+    @classmethod
+    def poll(cls, context):
+        return (bpy.app.version >= (4, 2, 0) and context.scene is not None  # EEVEE Next's bake
+                and bool(probe_volumes.volume_probes(context.scene)))
+
+    def execute(self, context):
+        try:
+            suns, seen = probe_volumes.bake(context)
+        except RuntimeError as e:
+            self.report({"ERROR"}, "Light probe bake failed: %s" % str(e).strip().splitlines()[-1])
+            return {"CANCELLED"}
+        merged = " (as %d for their shadows in the bake)" % seen if seen < suns else ""
+        self.report({"INFO"}, "Baked %d light probe volumes with %d suns%s" % (
+            len(probe_volumes.volume_probes(context.scene)), suns, merged))
+        return {"FINISHED"}
+
+
 classes = (PROBE_LIGHTS_OT_bake, PROBE_LIGHTS_OT_restore, PROBE_LIGHTS_OT_tradeoff, PROBE_LIGHTS_OT_set_count,
-           PROBE_LIGHTS_OT_cycles_settings, PROBE_LIGHTS_OT_eevee_settings)
+           PROBE_LIGHTS_OT_cycles_settings, PROBE_LIGHTS_OT_eevee_settings, PROBE_LIGHTS_OT_bake_light_probes)

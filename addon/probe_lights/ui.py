@@ -3,7 +3,7 @@ widths: short labels, enums as buttons, and every long line (results, notes, war
 
 import bpy
 
-from . import cycles_settings, eevee_settings, light_kinds, native
+from . import cycles_settings, eevee_settings, light_kinds, native, probe_volumes
 from .bake import eevee_cones_note, image_changed
 from .light_objects import baked_worlds, world_collection
 from .text_fit import fits, wrap
@@ -131,6 +131,41 @@ def _draw_results(layout, context, width, measure):
     elif suns and eevee_settings.fitted(scene):
         _lines(layout.column(align=True), "EEVEE's shadows are fitted to the lamps (Restore world puts them back)",
                width, measure, icon="INFO")
+    _draw_probe_bake(layout, scene, width, measure)
+
+
+def _draw_probe_bake(layout, scene, width, measure):
+    """What EEVEE's light probe bake lacks for the baked suns, with the bake that makes room."""
+    note = probe_volumes.advice(scene)
+    if note:
+        box = layout.box()
+        _lines(box.column(align=True), note, width - 16, measure, icon="ERROR")
+        box.operator("probe_lights.bake_light_probes", icon="LIGHTPROBE_VOLUME")
+
+
+def _draw_in_blenders_bake(self, context):
+    """Appended to Blender's own light probe bake panels: the same note and button, where the user bakes."""
+    if context.scene is not None and probe_volumes.advice(context.scene):
+        region = context.region
+        width = 0.95 * ((region.width if region else 300) - 58 * context.preferences.system.ui_scale)
+        _draw_probe_bake(self.layout, context.scene, width, _font_measure())
+
+
+# Blender's panels that hold its light probe bake button: the probe's own (Object Data) and the scene's (Render
+# Properties > Light Probes, named eevee_next before 5.0).
+_BAKE_PANELS = ("DATA_PT_lightprobe_bake", "SCENE_PT_eevee_next_light_probes", "SCENE_PT_eevee_light_probes")
+
+
+def register():
+    for name in _BAKE_PANELS:
+        if hasattr(bpy.types, name):
+            getattr(bpy.types, name).append(_draw_in_blenders_bake)
+
+
+def unregister():
+    for name in _BAKE_PANELS:
+        if hasattr(bpy.types, name):
+            getattr(bpy.types, name).remove(_draw_in_blenders_bake)
 
 
 def _draw_baked_worlds(layout, scene):

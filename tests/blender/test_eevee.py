@@ -156,7 +156,7 @@ def test_the_panels_count_of_suns_gives_the_fit_their_elevations_give():
         assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=count, lamps_take=take) == {"FINISHED"}
         shadows.restore(scene)
         suns = shadows.baked_suns(scene)
-        for pool in sorted(shadows._pools(scene)):
+        for pool in sorted(shadows.pool_sizes(scene)):
             for scale in (1.0, 0.5, 0.25):
                 scene.eevee.shadow_pool_size, scene.eevee.shadow_resolution_scale = str(pool), scale
                 exact = shadows._wanted(scene)

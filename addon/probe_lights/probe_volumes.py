@@ -1,0 +1,143 @@
+"""EEVEE's light probe volume bake with baked suns (EEVEE Next: Blender 4.2 and newer).
+
+A volume probe stores the light that reaches each of its points: the world's (which the add-on shows EEVEE for the
+camera only, world_mix.py, so the probe keeps no second copy of it) and the light the lamps' light makes bouncing
+off the scene. To bounce a sun's light the bake needs its shadow over every surface element it spawns, and it
+takes those pages from the same pool as renders, whatever shadow resolution the scene sets: ~100 to 160 pages a
+sun (BAKE_PAGES_PER_SUN). Past 13 to 20 suns in the default 512 MB pool, 26 to 40 in 1 GB, the pool is full: EEVEE
+drops pages, reports "Shadow buffer full" (an error for a script) and bakes bounce light with shadows missing.
+
+bake() bakes the probes for the lamps as they are when the largest pool holds their shadows; otherwise the
+bake sees fewer suns carrying the same light: the brightest suns, each with the light of the suns nearest to it
+in direction. Bounce light is smooth (a volume probe keeps two bands of spherical harmonics a point), so the
+merged suns bounce nearly the same light (docs/eevee.md measures it). The lamps and the pool are put back as
+they were when the bake ends, whether it succeeded or not.
+"""
+
+import math
+
+import bpy
+
+from . import eevee_settings
+from .light_objects import baked_lights
+from .world_mix import has_residual
+
+# Shadow pages one sun takes in a volume probe bake, at any shadow resolution scale: the most measured over plane
+# and probe sizes (docs/decisions.md), with the render fit's margin on top.
+BAKE_PAGES_PER_SUN = 160.0
+
+
+def volume_probes(scene):
+    """The scene's light probe volumes (their data's type is 'VOLUME' from 4.1 on, 'GRID' before)."""
+    return [o for o in scene.objects if o.type == "LIGHT_PROBE" and o.data.type in ("VOLUME", "GRID")]
+
+
+def _suns(scene):
+    return [o for o in baked_lights(scene.world) if o.type == "LIGHT" and o.data.type == "SUN" and not o.hide_render]
+
+
+def _largest_pool(scene):
+    return max(mb for mb in eevee_settings.pool_sizes(scene) if mb <= eevee_settings.MAX_POOL_MB)
+
+
+def suns_the_bake_holds(scene, pool_mb=None):
+    """How many suns' shadows a volume probe bake holds in a pool of `pool_mb` (the largest the add-on sets by
+    default), a residual world counted as one sun more."""
+    pages = (pool_mb or _largest_pool(scene)) * eevee_settings.PAGES_PER_MB
+    extra = 1 if has_residual(scene.world) else 0
+    return max(1, int(pages / (BAKE_PAGES_PER_SUN * eevee_settings.MARGIN)) - extra)
+
+
+def advice(scene):
+    """One line when a volume probe bake in this scene would drop the baked suns' shadows at the scene's pool, or
+    ''."""
+    if not eevee_settings.eevee_next(scene) or not volume_probes(scene):
+        return ""
+    suns = len(_suns(scene))
+    if suns < 2 or suns <= suns_the_bake_holds(scene, int(scene.eevee.shadow_pool_size)):
+        return ""
+    return ("EEVEE's light probe bake drops shadows of more than %d suns at this shadow pool: bake the probes here"
+            % suns_the_bake_holds(scene, int(scene.eevee.shadow_pool_size)))
+
+
+def _direction(lamp):
+    """Towards the sun (a sun shines along its -Z), unit length."""
+    up = lamp.matrix_world.to_3x3().col[2]
+    return up / max(up.length, 1e-12)
+
+
+def _luminance(lamp):
+    c = lamp.data.color
+    return lamp.data.energy * (0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2])
+
+
+def merge_plan(suns, keep):
+    """{representative: [suns it carries, itself first]} for the `keep` brightest suns, each other sun joined to
+    the representative nearest to it in direction."""
+    order = sorted(suns, key=_luminance, reverse=True)
+    reps = order[:keep]
+    plan = {rep: [rep] for rep in reps}
+    directions = {o: _direction(o) for o in suns}
+    for o in order[keep:]:
+        nearest = max(reps, key=lambda rep: directions[rep].dot(directions[o]))
+        plan[nearest].append(o)
+    return plan
+
+
+class _Merged:
+    """Within `with`: each representative's colour carries its group's light (Light.color has no upper limit; the
+    energy stays the world-strength driver's), the rest hidden from renders and bakes. Put back on exit."""
+
+    def __init__(self, plan):
+        self.plan = plan
+        self.saved = []
+
+    def __enter__(self):
+        for rep, group in self.plan.items():
+            if len(group) == 1:
+                continue
+            energy = rep.data.energy
+            total = [sum(o.data.energy * o.data.color[i] for o in group) for i in range(3)]
+            self.saved.append((rep, "color", tuple(rep.data.color)))
+            rep.data.color = [max(0.0, t / energy) if energy else 0.0 for t in total]
+            for o in group[1:]:
+                self.saved.append((o, "hide_render", o.hide_render))
+                o.hide_render = True
+        return self
+
+    def __exit__(self, *_):
+        for obj, name, value in reversed(self.saved):
+            if name == "color":
+                obj.data.color = value
+            else:
+                obj.hide_render = value
+        return False
+
+
+def bake(context):
+    """Bakes every light probe volume of the scene with its baked suns (at most as many as the largest pool's
+    shadows hold, merged as the module says). Should EEVEE still find the pool full (a scene beyond the pages
+    measured above), the bake is made again with half as many suns. Returns (suns baked, suns the bake saw)."""
+    scene = context.scene
+    suns = _suns(scene)
+    pool = _largest_pool(scene)
+    keep = min(len(suns), suns_the_bake_holds(scene, pool))
+    eevee = scene.eevee
+    before = (eevee.shadow_pool_size, eevee.shadow_resolution_scale)
+    extra = 1 if has_residual(scene.world) else 0
+    try:
+        while True:
+            needed = math.ceil((keep + extra) * BAKE_PAGES_PER_SUN * eevee_settings.MARGIN
+                               / eevee_settings.PAGES_PER_MB)
+            fits = [mb for mb in eevee_settings.pool_sizes(scene) if needed <= mb <= pool]
+            eevee.shadow_pool_size = str(max(int(before[0]), fits[0] if fits else pool))
+            try:
+                with _Merged(merge_plan(suns, keep) if keep < len(suns) else {}):
+                    bpy.ops.object.lightprobe_cache_bake(subset="ALL")
+                return len(suns), keep
+            except RuntimeError as e:
+                if "Shadow buffer full" not in str(e) or keep <= 1:  # Blender's words: its only sign of it
+                    raise
+                keep //= 2
+    finally:
+        eevee.shadow_pool_size, eevee.shadow_resolution_scale = before

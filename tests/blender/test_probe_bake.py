@@ -1,0 +1,103 @@
+"""EEVEE's light probe volume bake after a bake of many suns (rendered under Xvfb: EEVEE needs OpenGL). Its shadows
+come from the same pool as renders, ~100 to 160 pages a sun whatever the shadow resolution: after 64 suns the
+bake filled the largest pool (6,260 of 4,096 pages in bpy 4.5.15: "Shadow buffer full", an error for a script, and
+bounce light baked with shadows missing). The add-on's bake of the probes makes room and merges the suns for the
+bake past what the pool holds; ctest fails this test on "Shadow buffer full" anywhere in its log. Run in the LTS
+Blender and the newest (tests/CMakeLists.txt)."""
+
+import os
+import sys
+
+import bpy
+import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "harness"))
+import harness  # noqa: E402
+import render_scene  # noqa: E402
+
+ARGS = harness.args()
+harness.install_addon(ARGS.zip)
+LUM = render_scene.LUM
+TAA_SAMPLES = 16
+CYCLES_SAMPLES = 256  # the reference: Cycles with 4 bounces (render_scene.sphere_over_plane)
+
+
+def _scene_with_volume(suns, probe=harness.BUNDLED_PROBE):
+    """The sphere over a plane lit by `probe`, `suns` baked in EEVEE, a light probe volume around both."""
+    harness.empty_scene()
+    harness.addon_module("eevee_settings").restore(bpy.context.scene)
+    harness.env_world(bpy.data.images.load(probe))
+    render_scene.sphere_over_plane(160, 120, CYCLES_SAMPLES)
+    scene = bpy.context.scene
+    scene.render.engine = harness.eevee_engine()
+    scene.render.film_transparent = True  # block_difference takes the lit object pixels from the alpha
+    scene.eevee.taa_render_samples = TAA_SAMPLES
+    # (256 lamps without the refit: its directions took 215 s at 256 lights here, 6 s at 128; the probes' bake takes
+    # the lamps as they stand)
+    assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=suns, refit=suns <= 64) == {"FINISHED"}
+    bpy.ops.object.lightprobe_add(type="VOLUME", location=(0, 0, 1))
+    volume = bpy.context.object
+    volume.scale = (4, 4, 2)
+    return scene, volume
+
+
+def _state(scene):
+    """What the bake of the probes must leave as it found it: each lamp's colour and render visibility, the pool."""
+    lamps = [o for o in scene.objects if o.type == "LIGHT"]
+    return ([(o.name, tuple(round(c, 7) for c in o.data.color), o.hide_render) for o in lamps],
+            scene.eevee.shadow_pool_size, scene.eevee.shadow_resolution_scale)
+
+
+def test_probe_bake_holds_64_and_256_suns():
+    """After 64 and after 256 suns the add-on's bake of the probes succeeds with no page dropped, the panels say
+    it is needed where Blender's own bake button is, and the lamps and the pool are as they were; at 64 the probe
+    holds light (the lit objects brighter by their bounce light; 256 suns are not rendered: 50 s a render here)."""
+    probes = harness.addon_module("probe_volumes")
+    for suns in (64, 256):
+        scene, volume = _scene_with_volume(suns)
+        before = _state(scene)
+        assert probes.advice(scene), "the panel must offer the bake for %d suns" % suns
+        unbaked = render_scene.render() if suns == 64 else None
+        assert bpy.ops.probe_lights.bake_light_probes() == {"FINISHED"}
+        assert _state(scene) == before
+        print("  %d suns: the bake saw %d" % (suns, min(suns, probes.suns_the_bake_holds(scene))))
+        if unbaked is not None:
+            baked = render_scene.render()
+            lit = render_scene.lit_blocks(unbaked)
+            gain = (render_scene.block_luminance(baked)[lit].sum()
+                    / render_scene.block_luminance(unbaked)[lit].sum())
+            print("  the lit objects %.3f times as bright with the baked volume" % gain)
+            assert 1.02 < gain < 1.5, gain
+
+
+def test_the_probe_bounces_the_lamps_light_and_not_the_world():
+    """The add-on shows EEVEE the world for the camera only (world_mix.py): the probe must hold the lamps' bounce
+    light and no second copy of the world's. Baked with the world captured (EEVEE's default) and without it, the
+    renders agree; and EEVEE with lamps and the baked probe is no farther from Cycles with 4 bounces than EEVEE
+    with the lamps alone (8 x 8 blocks of lit object pixels)."""
+    scene, volume = _scene_with_volume(64)
+    scene.render.engine = "CYCLES"
+    cycles = render_scene.render()
+    scene.render.engine = harness.eevee_engine()
+    lamps_only = render_scene.render()
+    assert bpy.ops.probe_lights.bake_light_probes() == {"FINISHED"}
+    with_probe = render_scene.render()
+    volume.data.capture_world = False
+    assert bpy.ops.probe_lights.bake_light_probes() == {"FINISHED"}
+    no_world = render_scene.render()
+    lit = render_scene.lit_blocks(cycles)
+    world_part = float(np.abs(render_scene.block_luminance(with_probe)[lit]
+                              - render_scene.block_luminance(no_world)[lit]).mean()
+                       / render_scene.block_luminance(no_world)[lit].mean())
+    without, _ = render_scene.block_difference(cycles, lamps_only)
+    within, blocks = render_scene.block_difference(cycles, with_probe)
+    print("  64 suns, against Cycles with 4 bounces (%d blocks): EEVEE lamps alone %.2f %%, with the baked probe "
+          "%.2f %%; the world's part of the probe %.3f %%" % (blocks, 100 * without, 100 * within, 100 * world_part))
+    assert world_part < 0.002, world_part
+    assert within <= without + 0.002, (within, without)
+
+
+if bpy.app.version >= (4, 2, 0):
+    harness.run([test_probe_bake_holds_64_and_256_suns, test_the_probe_bounces_the_lamps_light_and_not_the_world])
+else:
+    print("skipped: EEVEE Legacy (Blender %s) bakes no light probe volumes this way" % bpy.app.version_string)
