@@ -48,6 +48,32 @@ def _state(scene):
             scene.eevee.shadow_pool_size, scene.eevee.shadow_resolution_scale)
 
 
+class _Layout:
+    """Stands in for a panel's layout (background Blender draws no panels): records what a draw function puts."""
+
+    def __init__(self, placed=None):
+        self.placed = [] if placed is None else placed
+
+    def box(self):
+        return _Layout(self.placed)
+
+    def column(self, align=False):
+        return _Layout(self.placed)
+
+    def label(self, text="", icon="NONE"):
+        self.placed.append(("label", text))
+
+    def operator(self, idname, icon="NONE", text=None):
+        self.placed.append(("operator", idname))
+
+
+def _drawn_in_blenders_bake_panel():
+    """What the add-on adds to Blender's own light probe bake panels, drawn with a stand-in layout."""
+    panel = type("Panel", (), {"layout": _Layout()})()
+    harness.addon_module("ui")._draw_in_blenders_bake(panel, bpy.context)
+    return panel.layout.placed
+
+
 def test_probe_bake_holds_64_and_256_suns():
     """After 64 and after 256 suns the add-on's bake of the probes succeeds with no page dropped, the panels say
     it is needed where Blender's own bake button is, and the lamps and the pool are as they were; at 64 the probe
@@ -57,6 +83,7 @@ def test_probe_bake_holds_64_and_256_suns():
         scene, volume = _scene_with_volume(suns)
         before = _state(scene)
         assert probes.advice(scene), "the panel must offer the bake for %d suns" % suns
+        assert ("operator", "probe_lights.bake_light_probes") in _drawn_in_blenders_bake_panel()
         unbaked = render_scene.render() if suns == 64 else None
         assert bpy.ops.probe_lights.bake_light_probes() == {"FINISHED"}
         assert _state(scene) == before
