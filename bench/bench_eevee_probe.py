@@ -58,27 +58,17 @@ print("| probe | bake saw | lamps alone | lamps + probe | world's part | 16 suns
 print("|---|---|---|---|---|---|---|---|")
 for probe in PROBES:
     scene, volume = scene_for(probe, 64)
-    scene.render.engine = "CYCLES"
-    cycles = render_scene.render()
-    scene.render.engine = harness.eevee_engine()
-    alone = render_scene.render()
+    cycles, alone, with_probe = render_scene.probe_bake_renders(scene)
+    volume.data.capture_world = False
     start = time.perf_counter()
     assert bpy.ops.probe_lights.bake_light_probes() == {"FINISHED"}
     bake_s = time.perf_counter() - start
-    with_probe = render_scene.render()
-    volume.data.capture_world = False
-    assert bpy.ops.probe_lights.bake_light_probes() == {"FINISHED"}
     no_world = render_scene.render()
     lit = render_scene.lit_blocks(cycles)
     seen = min(64, volumes.suns_the_bake_holds(scene))
 
     scene, volume = scene_for(probe, 16)
-    scene.render.engine = "CYCLES"
-    cycles16 = render_scene.render()
-    scene.render.engine = harness.eevee_engine()
-    alone16 = render_scene.render()
-    assert bpy.ops.probe_lights.bake_light_probes() == {"FINISHED"}
-    all16 = render_scene.render()
+    cycles16, alone16, all16 = render_scene.probe_bake_renders(scene)
     pages = volumes.BAKE_PAGES_PER_SUN
     largest = max(mb for mb in harness.addon_module("eevee_settings").pool_sizes(scene) if mb <= 1024)
     extra = 1 if harness.addon_module("world_mix").has_residual(scene.world) else 0

@@ -264,3 +264,15 @@ def eevee_comparison_scene(probe, engine, width, height, samples):
     scene.cycles.max_bounces = 0
     scene.render.engine = engine
     return scene
+
+
+def probe_bake_renders(scene):
+    """Three renders of a scene with baked lamps and a light probe volume: Cycles (the lamps, the scene's bounces),
+    EEVEE with the lamps alone, and EEVEE after the add-on's bake of the light probes; the engine is left at EEVEE."""
+    import harness
+    scene.render.engine = "CYCLES"
+    cycles = render()
+    scene.render.engine = harness.eevee_engine()
+    alone = render()
+    assert bpy.ops.probe_lights.bake_light_probes() == {"FINISHED"}
+    return cycles, alone, render()

@@ -103,12 +103,7 @@ def test_the_probe_bounces_the_lamps_light_and_not_the_world():
     renders agree; and EEVEE with lamps and the baked probe is no farther from Cycles with 4 bounces than EEVEE
     with the lamps alone (8 x 8 blocks of lit object pixels)."""
     scene, volume = _scene_with_volume(64)
-    scene.render.engine = "CYCLES"
-    cycles = render_scene.render()
-    scene.render.engine = harness.eevee_engine()
-    lamps_only = render_scene.render()
-    assert bpy.ops.probe_lights.bake_light_probes() == {"FINISHED"}
-    with_probe = render_scene.render()
+    cycles, lamps_only, with_probe = render_scene.probe_bake_renders(scene)
     volume.data.capture_world = False
     assert bpy.ops.probe_lights.bake_light_probes() == {"FINISHED"}
     no_world = render_scene.render()
