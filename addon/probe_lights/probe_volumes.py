@@ -93,16 +93,20 @@ class _Merged:
         self.saved = []
 
     def __enter__(self):
-        for rep, group in self.plan.items():
-            if len(group) == 1:
-                continue
-            energy = rep.data.energy
-            total = [sum(o.data.energy * o.data.color[i] for o in group) for i in range(3)]
-            self.saved.append((rep, "color", tuple(rep.data.color)))
-            rep.data.color = [max(0.0, t / energy) if energy else 0.0 for t in total]
-            for o in group[1:]:
-                self.saved.append((o, "hide_render", o.hide_render))
-                o.hide_render = True
+        try:
+            for rep, group in self.plan.items():
+                if len(group) == 1:
+                    continue
+                energy = rep.data.energy
+                total = [sum(o.data.energy * o.data.color[i] for o in group) for i in range(3)]
+                self.saved.append((rep, "color", tuple(rep.data.color)))
+                rep.data.color = [max(0.0, t / energy) if energy else 0.0 for t in total]
+                for o in group[1:]:
+                    self.saved.append((o, "hide_render", o.hide_render))
+                    o.hide_render = True
+        except BaseException:
+            self.__exit__()  # what was changed before the failure
+            raise
         return self
 
     def __exit__(self, *_):

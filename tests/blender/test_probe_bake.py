@@ -64,6 +64,8 @@ class _Layout:
         self.placed.append(("label", text))
 
     def operator(self, idname, icon="NONE", text=None):
+        icons = bpy.types.UILayout.bl_rna.functions["operator"].parameters["icon"].enum_items.keys()
+        assert icon in icons, icon  # a real layout raises on an icon this Blender does not have
         self.placed.append(("operator", idname))
 
 
