@@ -17,16 +17,15 @@ import render_scene  # noqa: E402
 
 ARGS = harness.args()
 harness.install_addon(ARGS.zip)
-LUM = render_scene.LUM
 TAA_SAMPLES = 16
 CYCLES_SAMPLES = 256  # the reference: Cycles with 4 bounces (render_scene.sphere_over_plane)
 
 
-def _scene_with_volume(suns, probe=harness.BUNDLED_PROBE):
-    """The sphere over a plane lit by `probe`, `suns` baked in EEVEE, a light probe volume around both."""
+def _scene_with_volume(suns):
+    """The sphere over a plane lit by the bundled probe, `suns` baked in EEVEE, a light probe volume around both."""
     harness.empty_scene()
     harness.addon_module("eevee_settings").restore(bpy.context.scene)
-    harness.env_world(bpy.data.images.load(probe))
+    harness.env_world(bpy.data.images.load(harness.BUNDLED_PROBE))
     render_scene.sphere_over_plane(160, 120, CYCLES_SAMPLES)
     scene = bpy.context.scene
     scene.render.engine = harness.eevee_engine()
