@@ -55,10 +55,16 @@ def baked_worlds():
     return sorted(worlds, key=lambda w: w.name)
 
 
-def sun_height(lamp):
-    """|sin| of a sun lamp's elevation as it stands now (rig and drivers applied): a sun shines along its -Z."""
+def sun_direction(lamp):
+    """The unit direction towards a sun lamp as it stands now (rig and drivers applied): a sun shines along its
+    -Z."""
     up = lamp.matrix_world.to_3x3().col[2]
-    return min(1.0, abs(up.z) / max(up.length, 1e-12))
+    return up / max(up.length, 1e-12)
+
+
+def sun_height(lamp):
+    """|sin| of a sun lamp's elevation as it stands now."""
+    return min(1.0, abs(sun_direction(lamp).z))
 
 
 def baked_lights(world):

@@ -19,7 +19,8 @@ import math
 import bpy
 
 from . import eevee_settings
-from .light_objects import baked_lights
+from .bake import LUM
+from .light_objects import baked_lights, sun_direction
 from .world_mix import has_residual
 
 # Shadow pages one sun takes in a volume probe bake, at any shadow resolution scale: the most measured over plane
@@ -60,15 +61,8 @@ def advice(scene):
             % suns_the_bake_holds(scene, int(scene.eevee.shadow_pool_size)))
 
 
-def _direction(lamp):
-    """Towards the sun (a sun shines along its -Z), unit length."""
-    up = lamp.matrix_world.to_3x3().col[2]
-    return up / max(up.length, 1e-12)
-
-
 def _luminance(lamp):
-    c = lamp.data.color
-    return lamp.data.energy * (0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2])
+    return lamp.data.energy * float(LUM @ tuple(lamp.data.color))
 
 
 def merge_plan(suns, keep):
@@ -77,7 +71,7 @@ def merge_plan(suns, keep):
     order = sorted(suns, key=_luminance, reverse=True)
     reps = order[:keep]
     plan = {rep: [rep] for rep in reps}
-    directions = {o: _direction(o) for o in suns}
+    directions = {o: sun_direction(o) for o in suns}
     for o in order[keep:]:
         nearest = max(reps, key=lambda rep: directions[rep].dot(directions[o]))
         plan[nearest].append(o)
