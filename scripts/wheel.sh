@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Builds the Python package's wheel for one CPython (pyproject.toml: scikit-build-core over this tree's CMake) and
-# tags it with auditwheel (PyPI's, pinned, cached in ~/.cache/probelights) the manylinux tag its glibc symbols allow.
-# OpenImageIO's two libraries are left out of the wheel (--exclude): they are the openimageio wheel's, a dependency.
+# tags it with auditwheel (PyPI's, pinned, cached in ~/.cache/probelights) manylinux_2_28: what its glibc symbols
+# allow (cmake/portable_linux.cmake) and what its dependency, PyPI's openimageio wheel, needs too. OpenImageIO's two
+# libraries are left out of the wheel (--exclude): they are the openimageio wheel's.
 #   scripts/wheel.sh PYTHON OUT_DIR     -> prints the wheel's path
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -21,7 +22,7 @@ trap 'rm -rf "$raw"' EXIT
 "$python" -m venv "$raw/venv" >&2
 "$raw/venv/bin/pip" wheel -q --disable-pip-version-check --no-deps -w "$raw" "$root" >&2
 mkdir -p "$out"
-PATH=$tools/bin:$PATH auditwheel repair --exclude 'libOpenImageIO*' -w "$raw/repaired" "$raw"/probelights-*.whl >&2
+PATH=$tools/bin:$PATH auditwheel repair --plat manylinux_2_28_x86_64 --only-plat --exclude 'libOpenImageIO*' -w "$raw/repaired" "$raw"/probelights-*.whl >&2
 wheel=$(ls "$raw"/repaired/probelights-*.whl)
 mv "$wheel" "$out/"
 echo "$out/$(basename "$wheel")"

@@ -1,4 +1,5 @@
 // The CLI's commands, one file each; each takes the arguments after its name and returns the exit code.
+// run() is the whole command line (the arguments after the program's name): usage, dispatch, one-line errors.
 #pragma once
 
 #include <string>
@@ -6,6 +7,7 @@
 
 namespace probelights::cli {
 
+int run(const std::vector<std::string>& args);              // command_line.cpp
 int bakeCommand(const std::vector<std::string>& argv);      // bake_command.cpp
 int shCommand(const std::vector<std::string>& argv);        // sh_commands.cpp
 int sampleCommand(const std::vector<std::string>& argv);    // sh_commands.cpp

@@ -27,6 +27,12 @@
 #include "probelights/spherical_harmonics.h"
 #include "probelights/tradeoff.h"
 
+#if PROBELIGHTS_MODULE_CLI
+namespace probelights::cli {
+int run(const std::vector<std::string>& args);  // native/cli/command_line.cpp
+}
+#endif
+
 namespace py = pybind11;
 using namespace probelights;
 
@@ -491,6 +497,18 @@ PYBIND11_MODULE(_probelights, m) {
         fileDoc.c_str());
   m.def("bake_files", &pyBakeFiles, py::arg("paths"), py::kw_only(), py::arg("projection") = "auto",
         filesDoc.c_str());
+#endif
+#if PROBELIGHTS_MODULE_CLI
+  // The Python package's `probelights` command (python/probelights/_command.py): arguments as bytes
+  // (os.fsencode), so that any file name reaches the command as the program would get it; the exit code back.
+  m.def(
+      "_command",
+      [](const std::vector<py::bytes>& argv) {
+        std::vector<std::string> args(argv.begin(), argv.end());
+        py::gil_scoped_release release;
+        return cli::run(args);
+      },
+      py::arg("args"), "Run the probelights command line with these arguments; its exit code.");
 #endif
   m.def(
       "sh_project", &shProject, py::arg("pixels"), py::kw_only(), py::arg("bands"),

@@ -1,0 +1,105 @@
+// probelights: the command-line tool, thin over the library: the usage and the dispatch to one file per
+// command (bake_command.cpp, sh_commands.cpp, tradeoff_command.cpp; their options in options.h). Exit codes:
+// 0 success, 2 bad input or request (one line on stderr), 1 an unexpected internal failure. Run by main.cpp's
+// program and, in the Python package, by its module in the `probelights` entry point's process (python/).
+#include <cstdio>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "bake_args.h"
+#include "commands.h"
+#include "options.h"
+#include "write_whole.h"
+
+namespace {
+
+using namespace probelights;
+using namespace probelights::cli;
+
+const char* kUsage =
+    R"(usage: probelights bake PROBE [options]      N lights that carry exactly the probe's energy
+       probelights bake PROBE... --out-dir DIR [options]   a whole library, one JSON per probe
+       probelights sh PROBE --bands B [--irradiance] [--window none|hanning|lanczos] [-o sh.json]
+       probelights sample PROBE --bands B --epsilon E --samples N [--depth K] [--seed S] [-o samples.json]
+       probelights tradeoff PROBE [--effects diffuse,shadow,glossy] [--counts 1,2,4,...] [--methods ...]
+                              [--no-refit] [-o tradeoff.json] [--plot tradeoff.png]
+
+PROBE is any image OpenImageIO reads. sh: real SH coefficients (Sloan order, orthonormal, Condon-Shortley
+phase, theta from +Z) of the radiance, or with --irradiance of the irradiance. sample: directions and pdfs
+from the SH importance sampler (Jarosz et al. 2009 warping with Berger's epsilon clamping) of the probe's
+luminance.
+
+options (bake):
+)";
+
+// The command's own options, after the bake's (bakeOptionsUsage: the table the module shares).
+const char* kUsageOwn =
+    R"(  --both-cuts                       --cuts both
+  --projection auto|latlong|mirror-ball|angular
+                                    how the image maps to the sphere (default auto: lat-long for 2:1 images)
+  -o, --output FILE                 write the lights as JSON ('-' for standard output)
+  --preview FILE                    write a picture of the regions and lights (PNG)
+  --residual FILE                   lamps for the probe's bright sources alone; write what the world keeps
+                                    (the residual) to FILE (.exr): lamps + residual = the probe, exactly
+                                    (--source-level, default 10 x the mean luminance, or --source-share)
+  --gltf FILE                       write the lights as glTF 2.0 (KHR_lights_punctual: suns in lux, points in
+                                    candela, Y up; docs/export.md)
+  --usd FILE                        write the lights as USD (UsdLux, .usda: DistantLights normalized in lux,
+                                    or SphereLights; Z up, metres; docs/export.md)
+  --usd-dome none|reflections|residual
+                                    a DomeLight: reflections, the probe for reflections alone with the lamps
+                                    for diffuse light alone (as the add-on splits them); residual, what
+                                    --residual FILE keeps, with the lamps of the sources (default none)
+  --light-type sun|point            what --gltf and --usd write (default sun)
+  --distance M                      --light-type point: metres from the origin (default 10)
+  --out-dir DIR                     bake many probes (files, folders, quoted globs) into DIR: a JSON each and
+                                    summary.json; the next loads while one bakes; exit 3 if some failed
+  --previews                        with --out-dir: a preview PNG per probe too
+  -q, --quiet                       no summary on standard output
+  (sh, sample: --projection and --nonfinite as above; JSON goes to -o FILE or standard output)
+)";
+
+std::string usage() { return std::string(kUsage) + bakeOptionsUsage() + kUsageOwn; }
+
+}  // namespace
+
+int probelights::cli::run(const std::vector<std::string>& args) {
+  quietLibraries();
+  removeTemporariesOnSignal();  // Ctrl-C during a write leaves no temporary file (a library bake asks more)
+  try {
+    if (!args.empty() && args[0] == "--version") {
+      std::puts("probelights " PROBELIGHTS_VERSION);
+      return 0;
+    }
+    if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+      std::fputs(usage().c_str(), args.empty() ? messages() : stdout);
+      return args.empty() ? 2 : 0;
+    }
+    const std::map<std::string, int (*)(const std::vector<std::string>&)> commands{
+        {"bake", bakeCommand}, {"sh", shCommand}, {"sample", sampleCommand}, {"tradeoff", tradeoffCommand}};
+    if (auto command = commands.find(args[0]); command != commands.end()) {
+      std::vector<std::string> rest(args.begin() + 1, args.end());
+      for (const auto& s : rest)
+        if (s == "--help" || s == "-h") return std::fputs(usage().c_str(), stdout), 0;
+      const int code = command->second(rest);
+      writeStdout("");  // what is still buffered: a full disk or closed pipe behind stdout is an error
+      return code;
+    }
+    throw UsageError("unknown command '" + args[0] +
+                     "': use bake, sh, sample or tradeoff (see probelights --help)");
+  } catch (const Error& e) {
+    std::fprintf(messages(), "probelights: error: %s\n", e.what());
+    return 2;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(messages(), "probelights: error: out of memory\n");
+    return 2;
+  } catch (const std::length_error&) {
+    std::fprintf(messages(),
+                 "probelights: error: out of memory (the request is larger than memory can be)\n");
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(messages(), "probelights: internal error: %s\n", e.what());
+    return 1;
+  }
+}
