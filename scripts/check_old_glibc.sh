@@ -8,7 +8,8 @@
 #   scripts/check_old_glibc.sh --wheel build/release/probelights-*-cp311-*.whl [build/bin/probelights]
 #       the Python package as `pip install` there gives it (a CPython 3.11 built in the root once from Debian's
 #       source package of it): the command and the module bake the bundled probe; the lights equal this machine's
-#       build/bin's bit for bit, and the evaluator's errors to 1e-12 (another glibc's libm).
+#       build/bin's bit for bit, the refit's colours to 1e-9 and the evaluator's errors to 1e-12 (relative: another
+#       glibc's libm, whose last bits the refit's solve carries further).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=${PROBELIGHTS_CACHE:-$HOME/.cache/probelights}/debian11-root
@@ -61,7 +62,7 @@ worst = max(abs(e1[k] - e2[k]) / abs(e2[k]) for k in ("diffuse", "shadow"))
 rgb = max(abs(a - b) / abs(b) for l1, l2 in zip(json.load(open(d + "/there.json"))["lights"],
                                                 json.load(open(d + "/here.json"))["lights"])
           for a, b in zip(l1["rgb"], l2["rgb"]) if b)
-assert worst < 1e-12 and rgb < 1e-12, (worst, rgb)
+assert worst < 1e-12 and rgb < 1e-9, (worst, rgb)
 module = json.load(open(d + "/module.json"))
 lights = json.load(open(d + "/here16.json"))["lights"]
 assert module == [[l["direction"] for l in lights], [l["rgb"] for l in lights]], "the module's lights differ"
