@@ -12,7 +12,7 @@ namespace {
 // Lawson & Hanson (1974), chapter 23: an active-set method; P is the set of free (positive) variables. It
 // works on the normal equations G = A^T A, c = A^T b: a step costs O(n^2) and a solve on P O(|P|^3).
 std::vector<double> solveNormal(const std::vector<double>& G, const std::vector<double>& c, int n,
-                                double ridge) {
+                                double ridge, NnlsStats* stats) {
   std::vector<double> x(n, 0.0), w(n), z;
   std::vector<bool> inP(n, false);
   auto gradient = [&]() {  // w = A^T (b - A x) = c - G x
@@ -23,6 +23,7 @@ std::vector<double> solveNormal(const std::vector<double>& G, const std::vector<
     }
   };
   auto solveP = [&]() {  // least squares on the columns in P: Cholesky of G restricted to P
+    if (stats) ++stats->factorizations;
     std::vector<int> cols;
     for (int j = 0; j < n; ++j)
       if (inP[j]) cols.push_back(j);
@@ -87,12 +88,18 @@ std::vector<double> solveNormal(const std::vector<double>& G, const std::vector<
         x = z;
         break;
       }
+      // Step from x towards z until the first variable of P reaches 0; that one leaves P exactly (in floating
+      // point x + alpha (z - x) may land a rounding above 0, and the loop would then step by 0 for ever).
       double alpha = 1.0;
-      for (int j = 0; j < n; ++j)
-        if (inP[j] && z[j] <= 0) alpha = std::min(alpha, x[j] / (x[j] - z[j]));
+      int blocking = -1;
+      for (int j = 0; j < n; ++j) {
+        if (!inP[j] || z[j] > 0) continue;
+        const double a = x[j] > 0 ? x[j] / (x[j] - z[j]) : 0.0;
+        if (blocking < 0 || a < alpha) alpha = a, blocking = j;
+      }
       for (int j = 0; j < n; ++j) {
         x[j] += alpha * (z[j] - x[j]);
-        if (inP[j] && x[j] <= 0) inP[j] = false, x[j] = 0;
+        if (inP[j] && (x[j] <= 0 || j == blocking)) inP[j] = false, x[j] = 0;
       }
     }
   }
@@ -102,7 +109,8 @@ std::vector<double> solveNormal(const std::vector<double>& G, const std::vector<
 }  // namespace
 
 std::vector<std::vector<double>> nonNegativeLeastSquares(const std::vector<double>& A, int m, int n,
-                                                         const std::vector<std::vector<double>>& bs) {
+                                                         const std::vector<std::vector<double>>& bs,
+                                                         NnlsStats* stats) {
   // G = A^T A once for every right-hand side (the costly part for tall A: m n^2 / 2).
   std::vector<double> G(static_cast<std::size_t>(n) * n, 0.0);
   for (int i = 0; i < m; ++i)
@@ -124,14 +132,14 @@ std::vector<std::vector<double>> nonNegativeLeastSquares(const std::vector<doubl
     std::vector<double> c(n, 0.0);
     for (int i = 0; i < m; ++i)
       for (int j = 0; j < n; ++j) c[j] += A[static_cast<std::size_t>(i) * n + j] * b[i];
-    out.push_back(solveNormal(G, c, n, ridge));
+    out.push_back(solveNormal(G, c, n, ridge, stats));
   }
   return out;
 }
 
 std::vector<double> nonNegativeLeastSquares(const std::vector<double>& A, int m, int n,
-                                            const std::vector<double>& b) {
-  return nonNegativeLeastSquares(A, m, n, std::vector<std::vector<double>>{b}).front();
+                                            const std::vector<double>& b, NnlsStats* stats) {
+  return nonNegativeLeastSquares(A, m, n, std::vector<std::vector<double>>{b}, stats).front();
 }
 
 }  // namespace probelights
