@@ -14,7 +14,7 @@ import bpy
 import numpy as np
 
 from . import cycles_settings, eevee_settings, light_kinds, native, render_cost
-from .conversion import sun_cones, sun_profile
+from .conversion import preset, sun_cones, sun_profile
 from .errors import ProbeError
 from .light_objects import (baked_worlds, make_lights, remove_collection_if_empty, remove_lights, sun_height,
                             world_collection)
@@ -91,24 +91,19 @@ def bake_world(context, settings, progress=lambda fraction: None, rendered=None,
         warnings.append("The bright sources: %d lamps made (Max error chooses the count for all of the light)"
                         % settings.count)
         max_error = 0.0
-    # The refit takes at most native.max_refit_lights() lights unless a tolerance picks the count (it stops there).
-    refit = settings.refit and not sources and (max_error > 0 or settings.count <= native.max_refit_lights())
-    if settings.refit and not refit and not sources:
-        warnings.append("Refit takes at most %d lights: %d lights baked without it" % (native.max_refit_lights(),
-                                                                                      settings.count))
+    # (The refit's limit is the core's: more lights are baked without it, and its note says so.)
+    refit = settings.refit and not sources
     extra = {"source_level": settings.source_level} if sources else {}
     try:
-        # With the refit, lights start at their regions' energy^2 centroids (towards the brightest light): with
-        # directions and colours refit, shadows came out closer on every probe tried (docs/shadows.md).
-        baked = native.bake(pixels, projection=projection, method=cut_method(settings.method), lights=settings.count,
-                            centroid="energy2" if refit else "energy",
-                            resolution=settings.resolution, evaluate=True, effects="diffuse,shadow",
-                            evaluator_width=512, refit=refit, move_directions=refit,
-                            max_error=max_error, nonfinite=settings.non_finite,
+        # The core's recipe for this engine (request.cpp: presets), changed by the panel's settings; without the
+        # refit each light sits at its region's energy centroid (energy^2 leans towards the brightest light, which
+        # only the refit's colours make up for: docs/shadows.md).
+        baked = native.bake(pixels, projection=projection, preset=preset(scene.render.engine, bpy.app.version),
+                            method=cut_method(settings.method), lights=settings.count,
+                            resolution=settings.resolution, max_error=max_error, nonfinite=settings.non_finite,
                             sun_angles=NATIVE_SUN_ANGLES[settings.shadows] if kind.soft else "points",
-                            sun_profile=sun_profile(bpy.app.version),
-                            sun_cones=sun_cones(scene.render.engine, bpy.app.version),
-                            cuts=cuts(settings.method, max_error > 0), **extra)
+                            sun_profile=sun_profile(bpy.app.version), cuts=cuts(settings.method, max_error > 0),
+                            **({} if refit else {"refit": False, "centroid": "energy"}), **extra)
     except ProbeError as e:
         message = str(e)
         if "; to read them as 0" in message:  # the module names the CLI's option; here it is the panel's

@@ -52,6 +52,12 @@ def sun_cones(engine, blender_version):
     return "above-horizon" if eevee_next else "free"
 
 
+def preset(engine, blender_version):
+    """The core's recipe for the add-on's bake in that engine (request.cpp: presets): its suns' cones as
+    sun_cones says, the rest the same."""
+    return "blender-eevee" if sun_cones(engine, blender_version) == "above-horizon" else "blender"
+
+
 NORMALIZED_SUN_SINCE = (4, 0, 0)  # measured: 3.4 disc; 4.5, 5.0, 5.2 normalized (3.5 to 4.4 not measured)
 
 

@@ -38,8 +38,19 @@ BakeArgs parseBakeArgs(const std::vector<std::string>& argv) {
   BakeArgs a;
   // The bake's options, from the table the module shares (request.h), then the command's own.
   std::vector<Option> table;
+  // A preset is the request's start wherever it stands on the command line: applied before the other options.
+  for (std::size_t i = 0; i < argv.size(); ++i) {
+    if (argv[i] == "--preset" && i + 1 < argv.size())
+      requestOption("preset").set(a.request, "--preset", argv[i + 1]);
+    else if (argv[i].rfind("--preset=", 0) == 0)
+      requestOption("preset").set(a.request, "--preset", argv[i].substr(9));
+  }
   for (const RequestOption& o : requestOptions()) {
     if (o.name == "max_error") continue;  // below: the command line refuses 0, a tolerance that asks nothing
+    if (o.name == "preset") {
+      table.push_back({{"--preset"}, [](const std::string&) {}});  // applied above
+      continue;
+    }
     std::vector<std::string> names{o.cliName()};
     if (o.name == "lights") names.push_back("-n");
     if (o.isSwitch())

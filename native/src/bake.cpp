@@ -4,6 +4,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "probelights/error.h"
 
@@ -32,6 +33,19 @@ EvaluatedBake bakeOnGrid(const Probe& probe, const MomentTable& table, double ta
                                                       " cells, never whole (tables built during the load)");
   return out;
 }
+
+namespace {
+
+// The one rule of the refit's limit (refit.h: kMaxRefitLights), for a fixed count and a chosen one alike:
+// more lights are baked without it, and the bake says so in one line. Turns `a`'s refit off when it does.
+void keepRefitWithinItsLimit(AccuracyOptions& a, std::size_t lights, std::vector<std::string>& notes) {
+  if (!a.refit || lights <= kMaxRefitLights) return;
+  a.refit = false, a.moveDirections = false;
+  notes.push_back("the refit takes at most " + std::to_string(kMaxRefitLights) +
+                  " lights: " + std::to_string(lights) + " lights baked without it");
+}
+
+}  // namespace
 
 EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOptions a,
                             const WorkingGrid* prebuilt) {
@@ -78,11 +92,12 @@ EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOpt
                     "no count met the tolerance of %.2f%%: using %d lights, the lowest error found (%.2f%%)",
                     100 * a.maxError, chosen.lights, 100 * chosen.errors.worst(a.effects));
     out.bake.notes.push_back(line);
+    keepRefitWithinItsLimit(a, out.bake.lights.size(), out.bake.notes);  // autoCount refit those within it
   } else {
     out.bake = grid.bake(probe, options);
     out.count = options.lights;
-    if (a.refit && out.bake.lights.size() > kMaxRefitLights)
-      throw Error("the refit takes at most " + std::to_string(kMaxRefitLights) + " lights");
+    std::vector<std::string> limit;  // the note goes on the bake kept (chooseCut returns another)
+    keepRefitWithinItsLimit(a, out.bake.lights.size(), limit);
     if (twoCuts) {
       ChosenCut chosen = chooseCut(probe, grid, evaluator, options, std::move(out.bake), a.cuts, a.refit,
                                    a.moveDirections, a.sunAngles);
@@ -91,6 +106,7 @@ EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOpt
       out.bake.lights = finishLights(evaluator, std::move(out.bake.lights), a.refit, a.moveDirections,
                                      a.sunAngles, &out.energyShift);
     }
+    out.bake.notes.insert(out.bake.notes.end(), limit.begin(), limit.end());
   }
   out.evaluated = true;
   out.refit = a.refit;

@@ -48,8 +48,40 @@ RequestOption option(std::string name, std::string values, std::string help,
           std::move(set),  std::move(get),    std::move(cli)};
 }
 
+std::vector<std::string> presetNames() {
+  std::vector<std::string> names;
+  for (const RequestPreset& p : requestPresets()) names.push_back(p.name);
+  return names;
+}
+
+std::string presetHelp() {
+  std::string help = "start from a named recipe, the other options then changing it: ";
+  for (const RequestPreset& p : requestPresets()) help += p.name + ", " + p.help + "; ";
+  return help.substr(0, help.size() - 2);
+}
+
 std::vector<RequestOption> makeOptions() {
   return {
+      // First in the table, which the shells apply in order: the explicit options then change the recipe.
+      option(
+          "preset",
+          [] {
+            std::string values;
+            for (const std::string& name : presetNames()) values += (values.empty() ? "" : "|") + name;
+            return values;
+          }(),
+          presetHelp(),
+          [](R& r, S o, S v) {
+            if (v.empty()) return r.preset.clear();  // none: the request as it stands
+            for (const RequestPreset& p : requestPresets())
+              if (p.name == v) {
+                for (const auto& [name, value] : p.options) requestOption(name).set(r, name, value);
+                r.preset = v;
+                return;
+              }
+            throw Error(o + " takes " + listOf(presetNames()) + ", got '" + v + "'");
+          },
+          [](const R& r) { return r.preset; }),
       option(
           "method", methodValues(), methodHelp(), [](R& r, S, S v) { r.bake.method = parseMethod(v); },
           [](const R& r) { return toString(r.bake.method); }),
@@ -88,7 +120,10 @@ std::vector<RequestOption> makeOptions() {
           "refit", "",
           "re-solve the lights' colours (non-negative least squares) so that their diffuse light and shadows "
           "match the probe's",
-          [](R& r, S o, S v) { r.accuracy.refit = parseSwitch(o, v); },
+          [](R& r, S o, S v) {
+            r.accuracy.refit = parseSwitch(o, v);
+            if (!r.accuracy.refit) r.accuracy.moveDirections = false;  // a preset's moves go with its refit
+          },
           [](const R& r) { return onOff(r.accuracy.refit); }),
       // After refit in this table, which the shells apply in order: moving directions is a refit.
       option(
@@ -172,6 +207,27 @@ std::vector<RequestOption> makeOptions() {
 }
 
 }  // namespace
+
+const std::vector<RequestPreset>& requestPresets() {
+  // The add-on's bake at its panel's defaults (addon/probe_lights/bake.py asks for these by name): 64
+  // lights, variance minimization with both cuts tried (auto), each light at its region's energy^2 centroid,
+  // colours and directions refit, suns' angles fitted to the shadows, the errors estimated on the probe
+  // grouped to 512 pixels wide. EEVEE's suns keep their cones above the horizon (cone.h: sun_cones).
+  static const std::vector<RequestPreset> presets = [] {
+    const std::vector<std::pair<std::string, std::string>> blender{
+        {"method", "variance"},        {"lights", "64"},           {"centroid", "energy2"},
+        {"effects", "diffuse,shadow"}, {"evaluate", "on"},         {"refit", "on"},
+        {"move_directions", "on"},     {"evaluator_width", "512"}, {"sun_angles", "fit"},
+        {"sun_profile", "cone"},       {"sun_cones", "free"},      {"cuts", "auto"}};
+    auto eevee = blender;
+    for (auto& [name, value] : eevee)
+      if (name == "sun_cones") value = "above-horizon";
+    return std::vector<RequestPreset>{
+        {"blender", "the Blender add-on's bake at its defaults (Cycles 4.0+; EEVEE before 4.2)", blender},
+        {"blender-eevee", "the same for EEVEE 4.2+ (suns' cones kept above the horizon)", eevee}};
+  }();
+  return presets;
+}
 
 std::string RequestOption::cliName() const {
   if (!cli.empty()) return cli;

@@ -33,6 +33,7 @@ expect_error "no probe" "no probe" bake
 expect_error "unknown command" "unknown command" frobnicate
 expect_error "unknown sun angles" "unknown sun angles 'soft'" bake "$probe" --sun-angles soft
 expect_error "unknown sun profile" "unknown sun profile" bake "$probe" --sun-profile round
+expect_error "unknown preset" "--preset takes blender or blender-eevee, got 'blend'" bake "$probe" --preset blend
 # A 2x2 PFM: square, so auto projection must ask; with a NaN, refused unless --nonfinite=zero.
 printf 'PF\n2 2\n-1.0\n' >"$tmp/square.pfm"
 python3 -c "import struct,sys; sys.stdout.buffer.write(struct.pack('<12f', *([1.0]*12)))" >>"$tmp/square.pfm"
@@ -108,6 +109,9 @@ expect_error "bad effect" "unknown effect" bake "$probe" --evaluate --effects ca
 expect_error "bad tolerance" "between 0 and 100%" bake "$probe" --max-error 200%
 check "bake --refit reports errors and the energy shift" "'$bin' bake '$probe' --lights 16 --refit --effects diffuse,shadow >'$tmp/refit.txt' && grep -q 'error      diffuse' '$tmp/refit.txt' && grep -q 'energy shift' '$tmp/refit.txt'"
 check "bake --refit-directions" "'$bin' bake '$probe' --lights 16 --refit-directions -q -o '$tmp/rd.json' && python3 -c \"import json; d=json.load(open('$tmp/rd.json')); assert d['evaluation']['refit'] and d['evaluation']['diffuse'] < 0.02\""
+# A preset is the add-on's recipe by name: the same lights as its options spelled out, whatever its place among
+# the others, which change it.
+check "bake --preset is the add-on's options" "'$bin' bake '$probe' --preset blender-eevee -q -o '$tmp/pe.json' && '$bin' bake '$probe' --lights 64 --method variance --cuts auto --centroid energy2 --refit --refit-directions --evaluate --effects diffuse,shadow --evaluator-width 512 --sun-angles fit --sun-profile cone --sun-cones above-horizon -q -o '$tmp/px.json' && '$bin' bake '$probe' --lights 8 --preset blender -q -o '$tmp/p8.json' && python3 -c \"import json; a, b, c = (json.load(open('$tmp/%s.json' % n)) for n in ('pe', 'px', 'p8')); [d.pop('timings_ms') for d in (a, b)]; assert a == b and len(a['lights']) == 64; assert len(c['lights']) == 8 and c['evaluation']['sun_cones'] == 'free' and c['evaluation']['refit']\""
 check "bake --max-error picks a count" "'$bin' bake '$probe' --max-error 2% -o '$tmp/auto.json' -q && python3 -c \"import json; d=json.load(open('$tmp/auto.json')); a=d['evaluation']; assert a['auto_count']['met'] and a['diffuse'] <= 0.02 and len(d['lights']) == a['auto_count']['lights']\""
 check "tradeoff table, JSON and plot" "'$bin' tradeoff '$probe' --counts 4,16 --methods variance,sh -o '$tmp/t.json' --plot '$tmp/t.png' >'$tmp/t.txt' && head -c 8 '$tmp/t.png' | od -An -c | grep -q 'P   N   G' && python3 -c \"import json; d=json.load(open('$tmp/t.json')); assert len(d['rows']) == 12, len(d['rows'])\""
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <string>
 
 #include "probelights/bake.h"
 #include "probelights/error.h"
@@ -31,6 +32,37 @@ TEST(Refit, LowersTheDiffuseErrorOnRealProbes) {
   }
   EXPECT_THROW(refitIrradiance(Evaluator(probe, kDiffuse), std::vector<Light>(3)),
                Error);  // not made for refit
+}
+
+TEST(Refit, MoreLightsThanItTakesAreBakedWithoutItSayingSoWhetherAskedOrChosen) {
+  // One rule for the limit (bake.h): a count past kMaxRefitLights, asked (both cuts or one) or picked by a
+  // tolerance, bakes without the refit, the result says it was not refit, and one note says why.
+  Probe probe = loadProbe(PROBELIGHTS_BUNDLED_PROBE);
+  const std::string note = "the refit takes at most " + std::to_string(kMaxRefitLights) + " lights: ";
+  auto noted = [&](const EvaluatedBake& r) {
+    int n = 0;
+    for (const std::string& line : r.bake.notes) n += line.rfind(note, 0) == 0;
+    return n;
+  };
+  for (CutChoice cuts : {CutChoice::One, CutChoice::Auto}) {
+    BakeOptions o;
+    o.lights = static_cast<int>(kMaxRefitLights) + 44;
+    AccuracyOptions a;
+    a.refit = a.moveDirections = true, a.cuts = cuts, a.evaluatorWidth = 256;
+    const EvaluatedBake r = bakeEvaluated(probe, o, a);
+    EXPECT_EQ(r.bake.lights.size(), kMaxRefitLights + 44);
+    EXPECT_FALSE(r.refit);
+    EXPECT_EQ(noted(r), 1);
+    o.lights = 16;
+    EXPECT_TRUE(bakeEvaluated(probe, o, a).refit);
+    EXPECT_EQ(noted(bakeEvaluated(probe, o, a)), 0);
+  }
+  AccuracyOptions tolerance;
+  tolerance.refit = true, tolerance.maxError = 1e-6, tolerance.evaluatorWidth = 256;  // met by no count
+  const EvaluatedBake chosen = bakeEvaluated(probe, BakeOptions{}, tolerance);
+  ASSERT_GT(chosen.bake.lights.size(), kMaxRefitLights);
+  EXPECT_FALSE(chosen.refit);
+  EXPECT_EQ(noted(chosen), 1);
 }
 
 TEST(Refit, MovingDirectionsLowersItFurther) {

@@ -25,7 +25,8 @@ TEST(Request, EveryOptionReadsBackWhatItWasSetTo) {
       {"evaluator_width", "512"}, {"sun_angles", "spread"},
       {"sun_profile", "disc"},    {"cuts", "auto"},
       {"nonfinite", "zero"},      {"source_level", "10"},
-      {"source_share", "0.6"},    {"sun_cones", "above-horizon"}};
+      {"source_share", "0.6"},    {"sun_cones", "above-horizon"},
+      {"preset", "blender-eevee"}};
   std::set<std::string> named;
   for (const auto& [name, value] : others) {
     const RequestOption& o = requestOption(name);
@@ -93,6 +94,34 @@ TEST(Request, MovingDirectionsIsARefit) {
   BakeRequest r;
   requestOption("move_directions").set(r, "move_directions", "true");
   EXPECT_TRUE(r.accuracy.refit && r.accuracy.moveDirections);
+}
+
+TEST(Request, APresetIsTheStartTheOtherOptionsChange) {
+  // The add-on's recipe by name: every option it names set as named, the others at their defaults; options
+  // applied after it (the table's order) change it, and turning the refit off turns its moves off too.
+  BakeRequest r;
+  requestOption("preset").set(r, "preset", "blender-eevee");
+  const BakeRequest defaults;
+  const RequestPreset& eevee = requestPresets()[1];
+  ASSERT_EQ(eevee.name, "blender-eevee");
+  std::set<std::string> named;
+  for (const auto& [name, value] : eevee.options) {
+    EXPECT_EQ(requestOption(name).get(r), value) << name;
+    named.insert(name);
+  }
+  for (const RequestOption& o : requestOptions())
+    if (!named.count(o.name) && o.name != "preset") EXPECT_EQ(o.get(r), o.get(defaults)) << o.name;
+  EXPECT_EQ(requestOption("sun_cones").get(r), "above-horizon");
+  requestOption("preset").set(r, "preset", "blender");
+  EXPECT_EQ(requestOption("sun_cones").get(r), "free");
+  requestOption("refit").set(r, "refit", "off");
+  EXPECT_FALSE(r.accuracy.refit || r.accuracy.moveDirections);
+  try {
+    requestOption("preset").set(r, "--preset", "blend");
+    FAIL() << "an unknown preset was taken";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "--preset takes blender or blender-eevee, got 'blend'");
+  }
 }
 
 TEST(Request, AFileIsReadIntoTheGridAloneOnlyWhenNothingElseIsNeeded) {

@@ -211,6 +211,8 @@ def test_sun_parameters_point_the_lamp_and_keep_its_irradiance():
     assert conversion.sun_cones("BLENDER_EEVEE", (5, 3, 0)) == "above-horizon"
     assert conversion.sun_cones("BLENDER_EEVEE", (3, 4, 1)) == "free"
     assert conversion.sun_cones("CYCLES", (5, 3, 0)) == "free"
+    assert conversion.preset("BLENDER_EEVEE", (5, 3, 0)) == "blender-eevee"
+    assert conversion.preset("BLENDER_EEVEE", (3, 4, 1)) == conversion.preset("CYCLES", (5, 3, 0)) == "blender"
     straight_up = conversion.rotation_to_direction((0, 0, 1))
     assert np.allclose(straight_up[:, 2], (0, 0, 1))
 

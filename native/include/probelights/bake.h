@@ -24,8 +24,9 @@
 namespace probelights {
 
 // One bake with the accuracy options the CLI and the add-on offer: `maxError` > 0 picks the count
-// (autoCount), `refit` refits the lights' colours, and any of them (or `evaluate`) measures the errors on
-// `effects`.
+// (autoCount), `refit` refits the lights' colours (up to kMaxRefitLights lights: a bake of more is made
+// without it and says so in a note, whether the count was asked or chosen), and any of them (or `evaluate`)
+// measures the errors on `effects`.
 struct AccuracyOptions {
   Effects effects = kDiffuse;
   bool evaluate = false, refit = false;

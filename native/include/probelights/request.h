@@ -25,7 +25,18 @@ struct BakeRequest {
   // (not max_error).
   SourceLevel sources;
   bool takesSources() const { return sources.level > 0 || sources.share > 0; }
+  std::string preset;  // the named recipe it started from (requestPresets), "" for none
 };
+
+// A named recipe: values of the table's options that a request starts from, the explicit options then
+// changing it. The Blender add-on's bake is one per engine, so that the CLI (--preset) and the module
+// (preset=) bake what the add-on bakes, from one definition.
+struct RequestPreset {
+  std::string name;
+  std::string help;
+  std::vector<std::pair<std::string, std::string>> options;  // (option name, value text), in table order
+};
+const std::vector<RequestPreset>& requestPresets();
 
 // An option of a request by name: the module's keyword ("max_error") and the CLI's option ("--max-error",
 // the name with '-' for '_', unless `cli` says otherwise).
