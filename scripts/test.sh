@@ -18,6 +18,8 @@ awk '!/^#/ && NF {print $2}' addon/extension-tools | while read -r version; do s
 if ! $quick; then
   # Blender as a Python module, each pinned version in a cached virtual environment (downloads only the first time).
   grep -E '^[0-9]' tests/blender/bpy-versions | while read -r version; do scripts/bpy-env.sh "$version" >/dev/null; done
+  # and the oldest Blender with extensions (addon/extension-tools), where the repository test runs too.
+  scripts/bpy-env.sh "$(awk '$1 == "oldest" {print $2}' addon/extension-tools)" >/dev/null
   # Windows' Pythons and Blenders for the Wine tests, pinned in tests/wine/versions (downloads only the first time).
   scripts/wine-env.sh module 311 >/dev/null
   scripts/wine-env.sh module 313 >/dev/null

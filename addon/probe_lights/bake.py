@@ -94,21 +94,15 @@ def bake_world(context, settings, progress=lambda fraction: None, rendered=None,
     # (The refit's limit is the core's: more lights are baked without it, and its note says so.)
     refit = settings.refit and not sources
     extra = {"source_level": settings.source_level} if sources else {}
-    try:
-        # The core's recipe for this engine (request.cpp: presets), changed by the panel's settings; without the
-        # refit each light sits at its region's energy centroid (energy^2 leans towards the brightest light, which
-        # only the refit's colours make up for: docs/shadows.md).
-        baked = native.bake(pixels, projection=projection, preset=preset(scene.render.engine, bpy.app.version),
-                            method=cut_method(settings.method), lights=settings.count,
-                            resolution=settings.resolution, max_error=max_error, nonfinite=settings.non_finite,
-                            sun_angles=NATIVE_SUN_ANGLES[settings.shadows] if kind.soft else "points",
-                            sun_profile=sun_profile(bpy.app.version), cuts=cuts(settings.method, max_error > 0),
-                            **({} if refit else {"refit": False, "centroid": "energy"}), **extra)
-    except ProbeError as e:
-        message = str(e)
-        if "; to read them as 0" in message:  # the module names the CLI's option; here it is the panel's
-            message = message.split("; to read them as 0")[0] + "; to read them as 0 set NaN/Inf to Zero"
-        raise ProbeError(message) from None
+    # The core's recipe for this engine (request.cpp: presets), changed by the panel's settings; without the
+    # refit each light sits at its region's energy centroid (energy^2 leans towards the brightest light, which
+    # only the refit's colours make up for: docs/shadows.md).
+    baked = native.bake(pixels, projection=projection, preset=preset(scene.render.engine, bpy.app.version),
+                        method=cut_method(settings.method), lights=settings.count,
+                        resolution=settings.resolution, max_error=max_error, nonfinite=settings.non_finite,
+                        sun_angles=NATIVE_SUN_ANGLES[settings.shadows] if kind.soft else "points",
+                        sun_profile=sun_profile(bpy.app.version), cuts=cuts(settings.method, max_error > 0),
+                        **({} if refit else {"refit": False, "centroid": "energy"}), **extra)
     bake_done = time.perf_counter()
     progress(0.8)
     # The lamps of the sources light every effect, the residual world the rest (world_mix.py says why).

@@ -59,12 +59,24 @@ def module():
     return _module
 
 
+# How the panel says the options that the core names as the way past a failure (its remedy: error.h).
+PANEL_REMEDIES = {"nonfinite": "set NaN/Inf pixels to Zero"}
+
+
+def in_panel_words(error):
+    """A module error's message, its remedy (if any) said as the panel's setting rather than the module's keyword."""
+    remedy = getattr(error, "remedy", None)
+    if remedy and remedy[1] in PANEL_REMEDIES:
+        return "%s; %s: %s" % (error.reason, remedy[0], PANEL_REMEDIES[remedy[1]])
+    return str(error)
+
+
 def _call(name, *args, **kwargs):
     m = module()
     try:
         return getattr(m, name)(*args, **kwargs)
     except m.Error as e:
-        raise ProbeError(str(e)) from None
+        raise ProbeError(in_panel_words(e)) from None
     finally:
         _keep_buffers_for_a_while()
 

@@ -89,7 +89,7 @@ int probelights::cli::run(const std::vector<std::string>& args) {
     throw UsageError("unknown command '" + args[0] +
                      "': use bake, sh, sample or tradeoff (see probelights --help)");
   } catch (const Error& e) {
-    std::fprintf(messages(), "probelights: error: %s\n", e.what());
+    std::fprintf(messages(), "probelights: error: %s\n", described(e).c_str());
     return 2;
   } catch (const std::bad_alloc&) {
     std::fprintf(messages(), "probelights: error: out of memory\n");

@@ -152,7 +152,7 @@ int bakeLibrary(const BakeArgs& a) {
     const std::string& name = names[index++];
     nlohmann::json entry{{"probe", item.path}, {"load_ms", item.loadMs}};
     loadMs += item.loadMs;
-    std::string error = item.error;
+    std::string error = describe(item.error, item.remedy.get(), spelled);
     if (item.result) {
       try {
         const EvaluatedBake& result = *item.result;
@@ -168,6 +168,8 @@ int bakeLibrary(const BakeArgs& a) {
         entry["lights"] = result.bake.lights.size();
         entry["bake_ms"] = item.bakeMs;
         if (result.evaluated) entry["worst_error"] = result.errors.worst(result.effects);
+      } catch (const Error& e) {
+        error = described(e);
       } catch (const std::exception& e) {
         error = e.what();
       }

@@ -6,12 +6,19 @@
 #include <cstdio>
 #include <sstream>
 
+#include "probelights/names.h"
 #include "write_whole.h"
 
 namespace probelights::cli {
 
 namespace {
 std::FILE* userStderr = nullptr;
+}
+
+std::string spelled(const Remedy& remedy) {
+  const std::string option =
+      remedy.option == "projection" ? "--projection" : requestOption(remedy.option).cliName();
+  return option + " " + listOf(remedy.values);
 }
 
 std::FILE* messages() { return userStderr ? userStderr : stderr; }

@@ -25,6 +25,11 @@ struct UsageError : Error {
 std::FILE* messages();
 void quietLibraries();
 
+// A failure's remedy (error.h) as the command line spells it: "--nonfinite zero", "--projection latlong,
+// mirror-ball or angular"; and a failure told with it.
+std::string spelled(const Remedy& remedy);
+inline std::string described(const Error& e) { return describe(e, spelled); }
+
 // One option of a command: its spellings and what it does with its value (a flag takes none).
 struct Option {
   std::vector<std::string> names;                 // e.g. {"--lights", "-n"}

@@ -19,6 +19,7 @@
 #include "probelights/evaluate.h"
 #include "probelights/light_export.h"
 #include "probelights/memory.h"
+#include "probelights/names.h"
 #include "probelights/probe.h"
 #include "probelights/refit.h"
 #include "probelights/request.h"
@@ -37,6 +38,14 @@ namespace py = pybind11;
 using namespace probelights;
 
 namespace {
+
+// A failure's remedy (error.h) in the module's words: "nonfinite='zero'", "projection='latlong',
+// 'mirror-ball' or 'angular'".
+std::string spelled(const Remedy& remedy) {
+  std::vector<std::string> values;
+  for (const std::string& v : remedy.values) values.push_back("'" + v + "'");
+  return remedy.option + "=" + listOf(values);
+}
 
 // Text for Python: UTF-8, or as os.fsdecode has bytes that are not (a file name's; surrogates, so that the
 // str names the same file again) rather than a UnicodeDecodeError that loses the result.
@@ -244,7 +253,7 @@ py::list pyBakeFiles(const py::object& paths, const std::string& projection, con
       } else {
         py::dict failed;
         failed["source"] = py::dict(py::arg("path") = fsText(item.path));
-        failed["error"] = fsText(item.error);
+        failed["error"] = fsText(describe(item.error, item.remedy.get(), spelled));
         out.append(failed);
       }
       return true;
@@ -462,7 +471,14 @@ PYBIND11_MODULE(_probelights, m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const Error& e) {
-      PyErr_SetObject(errorType.ptr(), fsText(e.what()).ptr());
+      // The message with its remedy in the module's words; the shells that word it their own way (the
+      // add-on's panel) read `reason` (the failure alone) and `remedy` ((purpose, option, values) or None).
+      py::object error = py::reinterpret_borrow<py::object>(errorType)(fsText(describe(e, spelled)));
+      error.attr("reason") = fsText(e.what());
+      const Remedy* remedy = e.remedy();
+      error.attr("remedy") =
+          remedy ? py::object(py::make_tuple(remedy->purpose, remedy->option, remedy->values)) : py::none();
+      PyErr_SetObject(errorType.ptr(), error.ptr());
     }
   });
   m.def(

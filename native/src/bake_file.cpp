@@ -38,6 +38,8 @@ void bakeFiles(const std::vector<std::string>& paths, const BakeRequest& request
       Stopwatch clock;
       out.result = bakeLoaded(*item.probe, request, item.table ? &*item.table : nullptr, item.tablesMs);
       out.bakeMs = clock.ms();
+    } catch (const Error& e) {
+      out.error = e.what(), out.remedy = e.sharedRemedy();
     } catch (const std::exception& e) {
       out.error = e.what();
     }
@@ -57,7 +59,7 @@ void bakeFiles(const std::vector<std::string>& paths, const BakeRequest& request
         Work w;
         LoadedProbe item = loadForBatch(paths[i], request.probe, grid);
         w.out.path = item.path;
-        w.out.error = item.error;
+        w.out.error = item.error, w.out.remedy = item.remedy;
         w.out.loadMs = item.loadMs;
         if (!item.probe) return w;
         if (item.probe->width() > kSmallProbeWidth) {

@@ -75,6 +75,8 @@ LoadedProbe loadForBatch(const std::string& path, const ProbeOptions& options, c
     } else {
       item.probe.emplace(loadProbe(path, options));
     }
+  } catch (const Error& e) {
+    item.error = e.what(), item.remedy = e.sharedRemedy();
   } catch (const std::exception& e) {
     item.error = e.what();
   }

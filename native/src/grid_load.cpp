@@ -19,7 +19,7 @@ GridProbe loadWhole(const std::string& path, const ProbeOptions& options, int ce
   try {
     probe.settle(counts, options.nonFinite);
   } catch (const Error& e) {
-    throw Error("probe '" + path + "': " + e.what());
+    throw e.within("probe '" + path + "': ");
   }
   return {std::move(probe), std::move(table), ms};
 }
@@ -55,7 +55,7 @@ GridProbe loadGrid(const std::string& path, const ProbeOptions& options, const B
   try {
     report.settle(options.nonFinite);
   } catch (const Error& e) {
-    throw Error("probe " + name + ": " + e.what());
+    throw e.within("probe " + name + ": ");
   }
   return {Probe::withoutPixels(kind, info.width, info.height, std::move(report)), std::move(table), tablesMs};
 }

@@ -69,7 +69,8 @@ ProjectionKind Probe::resolveProjection(ProjectionChoice choice, int width, int 
     return ProjectionKind::LatLong;
   }
   throw Error("cannot tell the projection of " + name + " (" + std::to_string(width) + "x" +
-              std::to_string(height) + ", not 2:1): say latlong, mirror-ball or angular (CLI: --projection)");
+                  std::to_string(height) + ", not 2:1)",
+              {"say which it is", "projection", {"latlong", "mirror-ball", "angular"}});
 }
 
 Probe::Probe(ImageView view, ProjectionKind projection, NonFinitePolicy nonFinite)
@@ -84,7 +85,7 @@ Probe::Probe(Image image, ProjectionChoice projection, NonFinitePolicy nonFinite
   try {
     validate(nonFinite);
   } catch (const Error& e) {
-    throw Error("probe '" + name + "': " + e.what());
+    throw e.within("probe '" + name + "': ");
   }
 }
 
@@ -214,8 +215,8 @@ void PixelReport::settle(NonFinitePolicy policy) {
     std::string where =
         "first at pixel (" + std::to_string(firstNonFiniteX) + ", " + std::to_string(firstNonFiniteY) + ")";
     if (policy == NonFinitePolicy::Error)
-      throw Error(std::to_string(nonFiniteSamples) + " NaN/Inf samples, " + where +
-                  "; to read them as 0 use the non-finite policy 'zero' (CLI: --nonfinite=zero)");
+      throw Error(std::to_string(nonFiniteSamples) + " NaN/Inf samples, " + where,
+                  {"to read them as 0", "nonfinite", {"zero"}});
     notes.push_back("read " + std::to_string(nonFiniteSamples) + " NaN/Inf samples as 0 (" + where + ")");
   }
   if (negativeSamples > 0) {

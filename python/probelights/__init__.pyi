@@ -16,6 +16,10 @@ methods: list[str]
 
 class Error(ValueError):
     """A bad input or option: its message is one line, the command line's."""
+    reason: str
+    """The failure alone, without the remedy the message ends with."""
+    remedy: tuple[str, str, list[str]] | None
+    """What gets past it, (purpose, option, values), e.g. ("to read them as 0", "nonfinite", ["zero"]), or None."""
 
 Pixels = npt.NDArray[np.float32]
 Lights = dict[str, npt.NDArray[np.float64]]

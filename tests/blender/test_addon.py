@@ -403,7 +403,7 @@ def test_bad_worlds_are_one_line_reports():
     nan = np.ones((8, 16, 3), np.float32)
     nan[2, 3, 1] = np.nan
     world.node_tree.nodes["Environment Texture"].image = harness.float_image("nan", nan)
-    expect_report("1 NaN/Inf samples, first at pixel (3, 2); to read them as 0 set NaN/Inf to Zero")
+    expect_report("1 NaN/Inf samples, first at pixel (3, 2); to read them as 0: set NaN/Inf pixels to Zero")
     assert not light_objects.baked_lights(bpy.context.scene.world)
 
 

@@ -37,10 +37,10 @@ expect_error "unknown preset" "--preset takes blender or blender-eevee, got 'ble
 # A 2x2 PFM: square, so auto projection must ask; with a NaN, refused unless --nonfinite=zero.
 printf 'PF\n2 2\n-1.0\n' >"$tmp/square.pfm"
 python3 -c "import struct,sys; sys.stdout.buffer.write(struct.pack('<12f', *([1.0]*12)))" >>"$tmp/square.pfm"
-expect_error "ambiguous projection" "--projection" bake "$tmp/square.pfm"
+expect_error "ambiguous projection" "say which it is: --projection latlong, mirror-ball or angular" bake "$tmp/square.pfm"
 printf 'PF\n4 2\n-1.0\n' >"$tmp/nan.pfm"
 python3 -c "import struct,sys; v=[1.0]*24; v[4]=float('nan'); sys.stdout.buffer.write(struct.pack('<24f', *v))" >>"$tmp/nan.pfm"
-expect_error "NaN pixels" "1 NaN/Inf samples" bake "$tmp/nan.pfm"
+expect_error "NaN pixels" "1 NaN/Inf samples, first at pixel (1, 1); to read them as 0: --nonfinite zero$" bake "$tmp/nan.pfm"
 expect_error "light type without glTF" "add --gltf FILE" bake "$probe" --light-type point
 expect_error "distance for suns" "add --light-type point" bake "$probe" --gltf "$tmp/x.gltf" --distance 3
 expect_error "bad light type" "sun or point" bake "$probe" --gltf "$tmp/x.gltf" --light-type spot

@@ -97,8 +97,12 @@ def test_both_cuts_keep_one_cut_and_say_which(bundled_probe, cuts, lights, said)
 def test_bad_pixels():
     a = np.ones((8, 16, 3), np.float32)
     a[2, 3, 0] = np.nan
-    with pytest.raises(pl.Error, match=r"1 NaN/Inf samples, first at pixel \(3, 2\)"):
+    with pytest.raises(pl.Error, match=r"1 NaN/Inf samples, first at pixel \(3, 2\)") as raised:
         pl.bake(a)
+    # The way past it in the module's words, and typed for a shell that words it its own way (the add-on).
+    assert str(raised.value).endswith("; to read them as 0: nonfinite='zero'"), raised.value
+    assert raised.value.remedy == ("to read them as 0", "nonfinite", ["zero"])
+    assert str(raised.value) == raised.value.reason + "; to read them as 0: nonfinite='zero'"
     r = pl.bake(a, nonfinite="zero", lights=2)
     assert np.isfinite(r["lights"]["rgb"]).all() and r["source"]["non_finite_samples"] == 1
     with pytest.raises(pl.Error, match="H x W"):

@@ -5,19 +5,22 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "probelights/error.h"
 #include "probelights/request.h"
 
 namespace probelights {
 
 struct BakedFile {
   std::string path;
-  std::optional<Probe> probe;           // as read (read into the grid alone: without its pixels)
-  std::optional<EvaluatedBake> result;  // empty when the probe could not be read or baked
-  std::string error;                    // why, one line
+  std::optional<Probe> probe;            // as read (read into the grid alone: without its pixels)
+  std::optional<EvaluatedBake> result;   // empty when the probe could not be read or baked
+  std::string error;                     // why, one line
+  std::shared_ptr<const Remedy> remedy;  // what gets past it, when there is something (error.h: describe)
   double loadMs = 0, bakeMs = 0;
 };
 

@@ -9,12 +9,14 @@
 #include <deque>
 #include <exception>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "probelights/error.h"
 #include "probelights/moment_table.h"
 #include "probelights/placement.h"
 #include "probelights/probe.h"
@@ -27,10 +29,11 @@ std::vector<std::string> expandProbePaths(const std::vector<std::string>& inputs
 
 struct LoadedProbe {
   std::string path;
-  std::optional<Probe> probe;        // empty when it could not be loaded
-  std::optional<MomentTable> table;  // its working grid, when read into one (loadGrid)
-  double tablesMs = 0;               // building that grid, part of loadMs
-  std::string error;                 // why, one line
+  std::optional<Probe> probe;            // empty when it could not be loaded
+  std::optional<MomentTable> table;      // its working grid, when read into one (loadGrid)
+  double tablesMs = 0;                   // building that grid, part of loadMs
+  std::string error;                     // why, one line
+  std::shared_ptr<const Remedy> remedy;  // what gets past it, when there is something (error.h: describe)
   double loadMs = 0;
 };
 
