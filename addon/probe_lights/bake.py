@@ -67,10 +67,6 @@ def world_probe(world, rendered=None):
     return pixels, source.projection, "image '%s' (%s)" % (source.image.name, source.projection), source, warnings
 
 
-def _native_warning(note):
-    return not note.startswith(("auto count:", "both cuts fitted:", "both cuts started:"))
-
-
 def bake_world(context, settings, progress=lambda fraction: None, rendered=None, render_ms=0.0):
     """Bakes the scene's world with `settings` (anything with the properties.bake_settings() attributes). Returns a
     summary: count, energy, ms, timings, source, notes, warnings, errors. `rendered`: the world's pixels from a
@@ -123,14 +119,15 @@ def bake_world(context, settings, progress=lambda fraction: None, rendered=None,
     elif CONES_KEY in world:
         del world[CONES_KEY]
     lamps_ms = 1000 * (time.perf_counter() - bake_done)
-    # The panel's notes say what was chosen; the figures behind a choice stay in the core's JSON.
-    notes = [n.split(" (")[0].replace(" kept and finished", " kept") for n in baked["notes"]
-             if not _native_warning(n)]
+    # The panel's notes say what the core chose (note.h: their kind); the figures behind a choice stay in the
+    # core's JSON. Every other note is a warning, with its figures.
+    notes = [n["text"] for n in baked["notes"] if n["kind"] == "chosen"]
     total = float(np.dot(baked["total_rgb"], LUM))
     captured = float(np.sum(baked["lights"]["rgb"] @ LUM))
     if sources:  # "% of the energy": the lamps' share of the world's light (the residual keeps the rest)
         total += float(np.dot(baked["sources"]["residual_rgb"], LUM))
-    warnings += [n for n in baked["notes"] if _native_warning(n)]
+    warnings += [n["text"] + (" (%s)" % n["detail"] if n["detail"] else "") for n in baked["notes"]
+                 if n["kind"] != "chosen"]
     offer = cycles_settings.advice(scene, len(lights))
     if offer:
         warnings.append(offer + " (Use Cycles settings for lamps in the panel)")

@@ -125,8 +125,8 @@ void printSummary(const BakeArgs& a, const Probe& probe, const EvaluatedBake& ev
   const BakeResult& r = ev.bake;
   std::printf("probe      %s  %dx%d %s\n", a.probe.c_str(), probe.width(), probe.height(),
               toString(probe.projection().kind()).c_str());
-  for (const auto& note : probe.report().notes) std::printf("note       %s\n", note.c_str());
-  for (const auto& note : r.notes) std::printf("note       %s\n", note.c_str());
+  for (const auto& note : probe.report().notes) std::printf("note       %s\n", note.line().c_str());
+  for (const auto& note : r.notes) std::printf("note       %s\n", note.line().c_str());
   std::printf("method     %s, %zu lights, cuts on a %dx%d grid (cell %d px)\n", toString(ev.cut).c_str(),
               r.lights.size(), (probe.width() + r.cellSize - 1) / r.cellSize,
               (probe.height() + r.cellSize - 1) / r.cellSize, r.cellSize);

@@ -17,7 +17,12 @@ class JsonWriter : public ResultWriter {
   void integer(const char* key, long long v) override { top()[key] = v; }
   void boolean(const char* key, bool v) override { top()[key] = v; }
   void text(const char* key, const std::string& v) override { top()[key] = v; }
-  void texts(const char* key, const std::vector<std::string>& v) override { top()[key] = v; }
+  void notes(const char* key, const std::vector<Note>& v) override {
+    nlohmann::json list = nlohmann::json::array();
+    for (const Note& n : v)
+      list.push_back({{"kind", toString(n.kind)}, {"text", n.text}, {"detail", n.detail}});
+    top()[key] = list;
+  }
   void numbers(const char* key, std::span<const double> v) override {
     top()[key] = std::vector<double>(v.begin(), v.end());
   }

@@ -72,7 +72,13 @@ class DictWriter : public ResultWriter {
   void integer(const char* key, long long v) override { stack_.back()[key] = v; }
   void boolean(const char* key, bool v) override { stack_.back()[key] = v; }
   void text(const char* key, const std::string& v) override { stack_.back()[key] = fsText(v); }
-  void texts(const char* key, const std::vector<std::string>& v) override { stack_.back()[key] = v; }
+  void notes(const char* key, const std::vector<Note>& v) override {
+    py::list list;
+    for (const Note& n : v)
+      list.append(py::dict(py::arg("kind") = toString(n.kind), py::arg("text") = fsText(n.text),
+                           py::arg("detail") = fsText(n.detail)));
+    stack_.back()[key] = list;
+  }
   void numbers(const char* key, std::span<const double> v) override {
     stack_.back()[key] = py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
   }

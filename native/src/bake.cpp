@@ -27,10 +27,11 @@ EvaluatedBake bakeOnGrid(const Probe& probe, const MomentTable& table, double ta
   out.bake.timings.tablesMs = tablesMs;
   out.count = options.lights;
   if (!probe.hasPixels())
-    out.bake.notes.insert(out.bake.notes.begin(), "read band by band into a working grid of " +
-                                                      std::to_string(table.width()) + "x" +
-                                                      std::to_string(table.height()) +
-                                                      " cells, never whole (tables built during the load)");
+    out.bake.notes.insert(out.bake.notes.begin(),
+                          {NoteKind::Reading,
+                           "read band by band into a working grid of " + std::to_string(table.width()) + "x" +
+                               std::to_string(table.height()) + " cells, never whole",
+                           "tables built during the load"});
   return out;
 }
 
@@ -38,11 +39,11 @@ namespace {
 
 // The one rule of the refit's limit (refit.h: kMaxRefitLights), for a fixed count and a chosen one alike:
 // more lights are baked without it, and the bake says so in one line. Turns `a`'s refit off when it does.
-void keepRefitWithinItsLimit(AccuracyOptions& a, std::size_t lights, std::vector<std::string>& notes) {
+void keepRefitWithinItsLimit(AccuracyOptions& a, std::size_t lights, std::vector<Note>& notes) {
   if (!a.refit || lights <= kMaxRefitLights) return;
   a.refit = false, a.moveDirections = false;
-  notes.push_back("the refit takes at most " + std::to_string(kMaxRefitLights) +
-                  " lights: " + std::to_string(lights) + " lights baked without it");
+  notes.push_back({NoteKind::Warning, "the refit takes at most " + std::to_string(kMaxRefitLights) +
+                                          " lights: " + std::to_string(lights) + " lights baked without it"});
 }
 
 }  // namespace
@@ -83,20 +84,23 @@ EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOpt
     out.bake = std::move(chosen.bake);
     out.autoCount = true, out.met = chosen.met, out.tried = std::move(chosen.tried),
     out.count = chosen.lights;
-    char line[200];
-    if (chosen.met)
-      std::snprintf(line, sizeof line, "auto count: %d lights, worst error %.2f%% (asked at most %.2f%%)",
-                    chosen.lights, 100 * chosen.errors.worst(a.effects), 100 * a.maxError);
-    else
+    char line[200], detail[80];
+    if (chosen.met) {
+      std::snprintf(line, sizeof line, "auto count: %d lights, worst error %.2f%%", chosen.lights,
+                    100 * chosen.errors.worst(a.effects));
+      std::snprintf(detail, sizeof detail, "asked at most %.2f%%", 100 * a.maxError);
+    } else {
       std::snprintf(line, sizeof line,
-                    "no count met the tolerance of %.2f%%: using %d lights, the lowest error found (%.2f%%)",
-                    100 * a.maxError, chosen.lights, 100 * chosen.errors.worst(a.effects));
-    out.bake.notes.push_back(line);
+                    "no count met the tolerance of %.2f%%: using %d lights, the lowest error found",
+                    100 * a.maxError, chosen.lights);
+      std::snprintf(detail, sizeof detail, "%.2f%%", 100 * chosen.errors.worst(a.effects));
+    }
+    out.bake.notes.push_back({chosen.met ? NoteKind::Chosen : NoteKind::Warning, line, detail});
     keepRefitWithinItsLimit(a, out.bake.lights.size(), out.bake.notes);  // autoCount refit those within it
   } else {
     out.bake = grid.bake(probe, options);
     out.count = options.lights;
-    std::vector<std::string> limit;  // the note goes on the bake kept (chooseCut returns another)
+    std::vector<Note> limit;  // the note goes on the bake kept (chooseCut returns another)
     keepRefitWithinItsLimit(a, out.bake.lights.size(), limit);
     if (twoCuts) {
       ChosenCut chosen = chooseCut(probe, grid, evaluator, options, std::move(out.bake), a.cuts, a.refit,

@@ -48,12 +48,15 @@ ChosenCut chooseCut(const Probe& probe, const WorkingGrid& grid, const Evaluator
   }
   const bool swap = errors[1] < errors[0];
   const Method kept = swap ? other.method : options.method, left = swap ? options.method : other.method;
-  char line[240];
-  std::snprintf(line, sizeof line,
-                finishBoth ? "both cuts fitted: %s kept (fit error %.4g against %s's %.4g)"
-                           : "both cuts started: %s kept and finished (fit error with colours solved %.4g "
-                             "against %s's %.4g)",
-                toString(kept).c_str(), errors[swap ? 1 : 0], toString(left).c_str(), errors[swap ? 0 : 1]);
+  char detail[160];
+  std::snprintf(detail, sizeof detail,
+                finishBoth ? "fit error %.4g against %s's %.4g"
+                           : "and finished; fit error with colours solved %.4g against %s's %.4g",
+                errors[swap ? 1 : 0], toString(left).c_str(), errors[swap ? 0 : 1]);
+  const Note note{
+      NoteKind::Chosen,
+      std::string(finishBoth ? "both cuts fitted: " : "both cuts started: ") + toString(kept) + " kept",
+      detail};
   ChosenCut out;
   out.energyShift = shifts[swap ? 1 : 0];
   out.cut = kept;
@@ -63,7 +66,7 @@ ChosenCut chooseCut(const Probe& probe, const WorkingGrid& grid, const Evaluator
   } else {
     out.bake = std::move(first);
   }
-  out.bake.notes.push_back(line);
+  out.bake.notes.push_back(note);
   return out;
 }
 

@@ -37,7 +37,7 @@ struct Transfer {
 // An open image file: OpenImageIO's reader, and the file's bytes when it reads them from memory.
 struct OpenImage {
   std::vector<unsigned char> bytes;
-  std::vector<std::string> notes;  // how it is read, for the probe's report (Image::notes)
+  std::vector<Note> notes;  // how it is read, for the probe's report (Image::notes)
   Transfer transfer;
   std::unique_ptr<OIIO::Filesystem::IOMemReader> memory;
   std::unique_ptr<OIIO::ImageInput> in;  // destroyed first (members go in reverse order)
@@ -113,11 +113,11 @@ std::string channelList(const OIIO::ImageSpec& spec) {
 // The channels a probe is read from (image.h's ImageView: 1 or 2 grey, 3+ RGB first), checked by name: an
 // image whose first three channels are not R, G, B, or whose two are not grey + alpha, is refused rather
 // than read as if it were colour.
-void checkChannels(const std::string& path, const OIIO::ImageSpec& spec, std::vector<std::string>& notes) {
+void checkChannels(const std::string& path, const OIIO::ImageSpec& spec, std::vector<Note>& notes) {
   if (spec.nchannels == 1) return;
   if (spec.nchannels == 2) {
     if (channelName(spec, 1) == "A") {
-      notes.push_back("channels " + channelList(spec) + ": read as grey, alpha ignored");
+      notes.push_back({NoteKind::Reading, "channels " + channelList(spec) + ": read as grey, alpha ignored"});
       return;
     }
     throw Error("cannot read probe '" + path + "': its 2 channels (" + channelList(spec) +
@@ -125,32 +125,35 @@ void checkChannels(const std::string& path, const OIIO::ImageSpec& spec, std::ve
   }
   if (channelName(spec, 0) == "R" && channelName(spec, 1) == "G" && channelName(spec, 2) == "B") {
     if (spec.nchannels > 4 || (spec.nchannels == 4 && channelName(spec, 3) != "A"))
-      notes.push_back("channels " + channelList(spec) + ": R, G, B read, the others ignored");
+      notes.push_back(
+          {NoteKind::Reading, "channels " + channelList(spec) + ": R, G, B read, the others ignored"});
     return;
   }
   throw Error("cannot read probe '" + path + "': its channels (" + channelList(spec) +
               ") do not begin with R, G, B; probelights reads grey, grey + alpha, or R, G, B (+ more)");
 }
 
-Transfer transferOf(const OIIO::ImageSpec& spec, const std::string& format, std::vector<std::string>& notes) {
+Transfer transferOf(const OIIO::ImageSpec& spec, const std::string& format, std::vector<Note>& notes) {
   const OIIO::TypeDesc::BASETYPE base = static_cast<OIIO::TypeDesc::BASETYPE>(spec.format.basetype);
   if (base == OIIO::TypeDesc::FLOAT || base == OIIO::TypeDesc::HALF || base == OIIO::TypeDesc::DOUBLE)
     return {};
   const std::string space = spec.get_string_attribute("oiio:ColorSpace");
   const std::string what = std::to_string(spec.format.size() * 8) + "-bit " + format;
   if (OIIO::Strutil::icontains(space, "linear") || OIIO::Strutil::istarts_with(space, "lin_")) {
-    notes.push_back(what + ": read as linear light (the file says " + space + ")");
+    notes.push_back({NoteKind::Reading, what + ": read as linear light", "the file says " + space});
     return {};
   }
   const float gamma = spec.get_float_attribute("oiio:Gamma", 0.0f);
   if (OIIO::Strutil::istarts_with(space, "gamma") && gamma > 0.1f && gamma < 10.0f) {
-    notes.push_back(what + ": values decoded with gamma " + std::to_string(gamma).substr(0, 4) +
-                    " to linear light (the file's)");
+    notes.push_back(
+        {NoteKind::Reading,
+         what + ": values decoded with gamma " + std::to_string(gamma).substr(0, 4) + " to linear light",
+         "the file's"});
     return {Transfer::Gamma, gamma};
   }
-  notes.push_back(what +
-                  ": sRGB values decoded to linear light, as Blender reads them; an HDR probe "
-                  "(EXR, .hdr) keeps the light brighter than white");
+  notes.push_back(
+      {NoteKind::Reading, what + ": sRGB values decoded to linear light, as Blender reads them; an HDR "
+                                 "probe (EXR, .hdr) keeps the light brighter than white"});
   return {Transfer::Srgb};
 }
 
@@ -217,11 +220,12 @@ OpenImage openImage(const std::string& path, bool fromMemory = false) {
                          spec.full_y + spec.full_height);
     if (!OIIO::roi_intersection(data, full).defined() || OIIO::roi_intersection(data, full).npixels() == 0)
       throw Error("cannot read probe '" + path + "': its data window lies outside its display window");
-    o.notes.push_back("data window " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
-                      " at (" + std::to_string(spec.x - spec.full_x) + ", " +
-                      std::to_string(spec.y - spec.full_y) + ") of the " + std::to_string(spec.full_width) +
-                      "x" + std::to_string(spec.full_height) +
-                      " display window: the sphere is the display window, the rest of it read as 0");
+    o.notes.push_back({NoteKind::Reading,
+                       "data window " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                           " at (" + std::to_string(spec.x - spec.full_x) + ", " +
+                           std::to_string(spec.y - spec.full_y) + ") of the " +
+                           std::to_string(spec.full_width) + "x" + std::to_string(spec.full_height) +
+                           " display window: the sphere is the display window, the rest of it read as 0"});
   }
   return o;
 }

@@ -76,7 +76,7 @@ Partition partitionSphere(const MomentTable& table, const CutRule& rule, int cou
   // Each region's moments, beside it: from the sweep that cut it out of its parent.
   std::vector<RegionMoments> moments{table.moments(table.wholeGrid())};
   if (table.litCells() == 0) {
-    p.notes.push_back("the probe is black: no lights");
+    p.notes.push_back({NoteKind::Warning, "the probe is black: no lights"});
     return p;
   }
 
@@ -152,8 +152,9 @@ Partition partitionSphere(const MomentTable& table, const CutRule& rule, int cou
 
   if (static_cast<int>(p.regions.size()) < count) {
     std::string cells = table.cellSize() == 1 ? "pixels" : "cells of the working grid";
-    p.notes.push_back("made " + std::to_string(p.regions.size()) + " lights, not " + std::to_string(count) +
-                      ": the probe has only " + std::to_string(table.litCells()) + " lit " + cells);
+    p.notes.push_back({NoteKind::Warning, "made " + std::to_string(p.regions.size()) + " lights, not " +
+                                              std::to_string(count) + ": the probe has only " +
+                                              std::to_string(table.litCells()) + " lit " + cells});
   }
   return p;
 }

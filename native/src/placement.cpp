@@ -29,7 +29,7 @@ void noteNonPositiveChannels(BakeResult& result) {
                     "the probe's %s light sums to %.4g, not above 0 (negative samples): lamps cannot be "
                     "negative, so the lights carry no %s",
                     kNames[k], result.totalRgb[k], kNames[k]);
-      result.notes.push_back(line);
+      result.notes.push_back({NoteKind::Warning, line});
     }
 }
 

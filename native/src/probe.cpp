@@ -53,7 +53,7 @@ void checkShape(const ImageView& view, const std::string& name) {
 }  // namespace
 
 ProjectionKind Probe::resolveProjection(ProjectionChoice choice, int width, int height,
-                                        const std::string& name, std::vector<std::string>& notes) {
+                                        const std::string& name, std::vector<Note>& notes) {
   switch (choice) {
     case ProjectionChoice::LatLong:
       return ProjectionKind::LatLong;
@@ -65,7 +65,7 @@ ProjectionKind Probe::resolveProjection(ProjectionChoice choice, int width, int 
       break;
   }
   if (width == 2 * height) {
-    notes.push_back("projection: lat-long (auto: the image is 2:1)");
+    notes.push_back({NoteKind::Reading, "projection: lat-long", "auto: the image is 2:1"});
     return ProjectionKind::LatLong;
   }
   throw Error("cannot tell the projection of " + name + " (" + std::to_string(width) + "x" +
@@ -217,21 +217,23 @@ void PixelReport::settle(NonFinitePolicy policy) {
     if (policy == NonFinitePolicy::Error)
       throw Error(std::to_string(nonFiniteSamples) + " NaN/Inf samples, " + where,
                   {"to read them as 0", "nonfinite", {"zero"}});
-    notes.push_back("read " + std::to_string(nonFiniteSamples) + " NaN/Inf samples as 0 (" + where + ")");
+    notes.push_back(
+        {NoteKind::Warning, "read " + std::to_string(nonFiniteSamples) + " NaN/Inf samples as 0", where});
   }
   if (negativeSamples > 0) {
-    std::string line = std::to_string(negativeSamples) +
-                       " negative samples (lossy compression produces them): the cuts weigh them as 0, the "
-                       "lights keep their light";
+    Note note{NoteKind::Warning,
+              std::to_string(negativeSamples) +
+                  " negative samples (lossy compression produces them): the cuts weigh them "
+                  "as 0, the lights keep their light"};
     // Their share, when it shows in a render: Cycles renders negative radiance too, which is why the lights
     // keep it (Probe::light; docs/decisions.md).
     const double share = positiveLight > 0 ? -negativeLight / positiveLight : 0.0;
     if (share >= 0.001) {
       char text[120];
-      std::snprintf(text, sizeof text, " (-%.1f %% of the probe's light, as Cycles renders it)", 100 * share);
-      line += text;
+      std::snprintf(text, sizeof text, "-%.1f %% of the probe's light, as Cycles renders it", 100 * share);
+      note.detail = text;
     }
-    notes.push_back(line);
+    notes.push_back(note);
   }
 }
 

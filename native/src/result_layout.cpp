@@ -113,9 +113,9 @@ void writeBake(ResultWriter& w, const BakeReport& report) {
   w.number("partition", r.timings.partitionMs);
   w.number("lights", r.timings.lightsMs);
   w.end();
-  std::vector<std::string> notes = probe.report().notes;
+  std::vector<Note> notes = probe.report().notes;
   notes.insert(notes.end(), r.notes.begin(), r.notes.end());
-  w.texts("notes", notes);
+  w.notes("notes", notes);
   writeEvaluation(w, report.bake);
 }
 

@@ -81,9 +81,10 @@ ShLightResult shLights(const Probe& probe, const ShLightOptions& o) {
   result.lights = lightsFromSums(probe, bounds, sums);
   result.lightsMs = t.ms();
   if (static_cast<int>(result.lights.size()) < o.lights)
-    result.notes.push_back("made " + std::to_string(result.lights.size()) + " lights, not " +
-                           std::to_string(o.lights) + ": " + std::to_string(o.lights - result.lights.size()) +
-                           " cells of the SH partition hold no lit pixel");
+    result.notes.push_back({NoteKind::Warning, "made " + std::to_string(result.lights.size()) +
+                                                   " lights, not " + std::to_string(o.lights) + ": " +
+                                                   std::to_string(o.lights - result.lights.size()) +
+                                                   " cells of the SH partition hold no lit pixel"});
   return result;
 }
 

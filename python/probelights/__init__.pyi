@@ -27,7 +27,8 @@ Lights = dict[str, npt.NDArray[np.float64]]
 def bake(pixels: Pixels, *, projection: str = "latlong", **options: Any) -> dict[str, Any]:
     """Bake a probe given as a float32 H x W x C array (rows top to bottom; not copied). Returns the layout of the
     command's JSON: source, method, lights (direction (N,3), rgb (N,3), solid_angle, angular_radius,
-    energy_share (N,), rect (N,4)), total_rgb, timings_ms, notes, and evaluation when asked for. options:
+    energy_share (N,), rect (N,4)), total_rgb, timings_ms, notes (dicts of kind 'reading', 'chosen' or
+    'warning', text and detail), and evaluation when asked for. options:
     preset ('blender' or 'blender-eevee': the Blender add-on's bake, the other options changing it), lights,
     max_error, method, evaluate, effects, refit, ... (help(probelights.bake) lists them all)."""
 

@@ -151,7 +151,7 @@ check "band-by-band bake: the lights of a whole load, and it says so" "grep -q '
 import json
 b, w, l = (json.load(open(f)) for f in ('$tmp/banded.json', '$tmp/whole.json', '$tmp/banded_lib/$(basename "$probe" .hdr).json'))
 assert b['lights'] == w['lights'] == l['lights'] and b['total_rgb'] == w['total_rgb']
-assert any('band by band' in n for n in b['notes']) and not any('band by band' in n for n in w['notes']), b['notes']
+assert any('band by band' in n['text'] for n in b['notes']) and not any('band by band' in n['text'] for n in w['notes']), b['notes']
 \""
 printf 'PF\n16 8\n-1.0\n' >"$tmp/nan8.pfm"
 python3 -c "import struct,sys; v=[1.0]*384; v[300]=float('nan'); sys.stdout.buffer.write(struct.pack('<384f', *v))" >>"$tmp/nan8.pfm"

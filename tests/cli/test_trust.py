@@ -283,7 +283,7 @@ def test_a_data_window_inside_the_display_window_is_placed_in_it(tmp_path, small
     assert p.returncode == 0, p.stderr
     d = load(tmp_path / "c.json")
     assert (d["source"]["width"], d["source"]["height"]) == (64, 32)
-    assert any("data window 32x8 at (16, 4)" in n for n in d["notes"]), d["notes"]
+    assert any("data window 32x8 at (16, 4)" in n["text"] for n in d["notes"]), d["notes"]
     # The same light as the full probe with everything outside the window black.
     zeroed = tmp_path / "zeroed.exr"
     oiio(crop, "--croptofull", "-o", zeroed)
@@ -296,17 +296,17 @@ def test_display_referred_images_are_decoded_to_linear_light(tmp_path, small):
     p = run("bake", small / "sky.png", "--lights", "2", "-o", tmp_path / "png.json")
     assert p.returncode == 0, p.stderr
     d = load(tmp_path / "png.json")
-    assert any("8-bit png: sRGB values decoded to linear light" in n for n in d["notes"]), d["notes"]
+    assert any("8-bit png: sRGB values decoded to linear light" in n["text"] for n in d["notes"]), d["notes"]
     linear = tmp_path / "linear.exr"
     oiio(small / "sky.png", "--colorconvert", "sRGB", "linear", "-d", "float", "-o", linear)
     run("bake", linear, "--lights", "2", "-o", tmp_path / "lin.json")
     ref = load(tmp_path / "lin.json")["total_rgb"]
     assert all(math.isclose(a, b, rel_tol=1e-3) for a, b in zip(d["total_rgb"], ref)), (d["total_rgb"], ref)
     p = run("bake", small / "linear.png", "--lights", "2", "-o", tmp_path / "linear.json")
-    assert any("8-bit png: read as linear light (the file says linear)" in n
-               for n in load(tmp_path / "linear.json")["notes"])
+    assert {"kind": "reading", "text": "8-bit png: read as linear light", "detail": "the file says linear"} in \
+        load(tmp_path / "linear.json")["notes"]
     p = run("bake", small / "sky16.tif", "--lights", "2", "-o", tmp_path / "tif.json")
-    assert any("16-bit tiff" in n for n in load(tmp_path / "tif.json")["notes"])
+    assert any("16-bit tiff" in n["text"] for n in load(tmp_path / "tif.json")["notes"])
 
 
 def test_channels_that_are_not_colour_are_refused(tmp_path, small):
@@ -316,7 +316,7 @@ def test_channels_that_are_not_colour_are_refused(tmp_path, small):
     ya = tmp_path / "ya.exr"
     oiio(small / "sky.exr", "--ch", "Y=R,A=G", "-o", ya)
     p = run("bake", ya, "--lights", "2", "-o", tmp_path / "ya.json")
-    assert p.returncode == 0 and any("read as grey" in n for n in load(tmp_path / "ya.json")["notes"])
+    assert p.returncode == 0 and any("read as grey" in n["text"] for n in load(tmp_path / "ya.json")["notes"])
     xyz = tmp_path / "xyz.exr"
     oiio(small / "sky.exr", "--ch", "X=R,Y=G,Z=B", "-o", xyz)
     one_line_error(run("bake", xyz), text="do not begin with R, G, B")

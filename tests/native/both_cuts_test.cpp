@@ -33,8 +33,8 @@ void expectKept(const Probe& probe, BakeOptions o, const AccuracyOptions& a, Met
     EXPECT_EQ(kept.errors.shadow, better.errors.shadow);
     EXPECT_EQ(kept.energyShift, better.energyShift);
     ASSERT_FALSE(kept.bake.notes.empty());
-    EXPECT_NE(kept.bake.notes.back().find(note + toString(expected) + " kept"), std::string::npos)
-        << kept.bake.notes.back();
+    EXPECT_EQ(kept.bake.notes.back().text, note + toString(expected) + " kept");
+    EXPECT_EQ(kept.bake.notes.back().kind, NoteKind::Chosen);
   }
 }
 

@@ -93,7 +93,7 @@ TEST(LightsFromRegions, AChannelWithNoLightIsSaid) {
   for (const Light& l : r.lights) blue += l.rgb[2];
   EXPECT_EQ(blue, 0.0);
   bool said = false;
-  for (const auto& n : r.notes) said |= n.find("blue light sums to") != std::string::npos;
+  for (const auto& n : r.notes) said |= n.text.find("blue light sums to") != std::string::npos;
   EXPECT_TRUE(said);
 }
 

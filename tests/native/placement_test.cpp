@@ -119,7 +119,8 @@ TEST(Bake, AnyNMoreLightsThanLitPixelsGivesFewerAndSaysSo) {
     auto r = bakeWith(t.probe, m, 8);
     EXPECT_EQ(r.lights.size(), 3u);
     ASSERT_EQ(r.notes.size(), 1u);
-    EXPECT_NE(r.notes[0].find("made 3 lights, not 8"), std::string::npos) << r.notes[0];
+    EXPECT_NE(r.notes[0].text.find("made 3 lights, not 8"), std::string::npos) << r.notes[0].text;
+    EXPECT_EQ(r.notes[0].kind, NoteKind::Warning);
     expectFiniteAndConserving(t.probe, r);
   }
 }
@@ -163,7 +164,7 @@ TEST(Bake, HardProbeAllBlackGivesNoLightsAndSaysSo) {
     auto r = bakeWith(t.probe, m, 16);
     EXPECT_TRUE(r.lights.empty());
     ASSERT_FALSE(r.notes.empty());
-    EXPECT_NE(r.notes[0].find("black"), std::string::npos);
+    EXPECT_NE(r.notes[0].text.find("black"), std::string::npos);
     EXPECT_EQ(r.totalRgb, (Rgb{0, 0, 0}));
   }
 }

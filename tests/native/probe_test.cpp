@@ -124,8 +124,9 @@ TEST(Probe, NegativeSamplesSayTheLightTheyHold) {
   char share[32];
   std::snprintf(share, sizeof share, "-%.1f %%", 100 * 2 * s0 / (4 * kPi - s0));
   ASSERT_EQ(probe.report().notes.size(), 1u);
-  EXPECT_NE(probe.report().notes[0].find(share), std::string::npos) << probe.report().notes[0];
-  EXPECT_NE(probe.report().notes[0].find("as Cycles renders it"), std::string::npos);
+  EXPECT_NE(probe.report().notes[0].detail.find(share), std::string::npos) << probe.report().notes[0].line();
+  EXPECT_NE(probe.report().notes[0].detail.find("as Cycles renders it"), std::string::npos);
+  EXPECT_EQ(probe.report().notes[0].kind, NoteKind::Warning);
   // The lights keep that light (Cycles renders it): one light carries the probe's signed integral.
   BakeOptions one;
   one.lights = 1;
@@ -137,7 +138,8 @@ TEST(Probe, NegativeSamplesSayTheLightTheyHold) {
   pixels[3] = -1e-4f;
   const Probe faint(ImageView{pixels.data(), 8, 4, 1}, ProjectionKind::LatLong);
   ASSERT_EQ(faint.report().notes.size(), 1u);
-  EXPECT_EQ(faint.report().notes[0].find("Cycles"), std::string::npos) << faint.report().notes[0];
+  EXPECT_EQ(faint.report().notes[0].line().find("Cycles"), std::string::npos)
+      << faint.report().notes[0].line();
 }
 
 TEST(Probe, BufferViewIsNotCopied) {
@@ -401,7 +403,8 @@ TEST(Probe, FilesAutoProjectionPicksLatLongFor2To1AndAsksOtherwise) {
   writeImage(dir / "wide.exr", 2 * S, S, 3, std::vector<float>(2 * S * S * 3, 1.0f));
   Probe wide = loadProbe((dir / "wide.exr").string());
   EXPECT_EQ(wide.projection().kind(), ProjectionKind::LatLong);
-  EXPECT_NE(wide.report().notes.at(0).find("auto"), std::string::npos);
+  EXPECT_EQ(wide.report().notes.at(0),
+            (Note{NoteKind::Reading, "projection: lat-long", "auto: the image is 2:1"}));
   fs::remove_all(dir);
 }
 

@@ -41,7 +41,8 @@ TEST(Refit, MoreLightsThanItTakesAreBakedWithoutItSayingSoWhetherAskedOrChosen) 
   const std::string note = "the refit takes at most " + std::to_string(kMaxRefitLights) + " lights: ";
   auto noted = [&](const EvaluatedBake& r) {
     int n = 0;
-    for (const std::string& line : r.bake.notes) n += line.rfind(note, 0) == 0;
+    for (const Note& line : r.bake.notes)
+      n += line.text.rfind(note, 0) == 0 && line.kind == NoteKind::Warning;
     return n;
   };
   for (CutChoice cuts : {CutChoice::One, CutChoice::Auto}) {

@@ -72,7 +72,7 @@ TEST(ShLights, SaysSoWhenCellsAreDark) {
   auto r = bake(t.probe, o);
   EXPECT_EQ(r.lights.size(), 1u);
   ASSERT_FALSE(r.notes.empty());
-  EXPECT_NE(r.notes[0].find("made 1 lights, not 8"), std::string::npos) << r.notes[0];
+  EXPECT_NE(r.notes[0].text.find("made 1 lights, not 8"), std::string::npos) << r.notes[0].text;
 }
 
 }  // namespace

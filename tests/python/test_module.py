@@ -87,8 +87,8 @@ def test_both_cuts_keep_one_cut_and_say_which(bundled_probe, cuts, lights, said)
               evaluator_width=128)
     r = pl.bake_file(bundled_probe, cuts=cuts, **kw)
     assert r["method"] in ("variance", "median-cut")
-    note = [n for n in r["notes"] if n.startswith("both cuts ")]
-    assert note and note[0].startswith("both cuts %s: %s kept" % (said, r["method"])), r["notes"]
+    note = [n for n in r["notes"] if n["kind"] == "chosen"]
+    assert note and note[0]["text"] == "both cuts %s: %s kept" % (said, r["method"]), r["notes"]
     alone = pl.bake_file(bundled_probe, method=r["method"], **kw)
     assert np.array_equal(r["lights"]["rgb"], alone["lights"]["rgb"])
     assert r["evaluation"]["shadow"] == alone["evaluation"]["shadow"]
@@ -164,7 +164,7 @@ def test_bake_file_on_the_bundled_probe(bundled_probe):
     r = pl.bake_file(bundled_probe, lights=16)
     assert r["source"]["width"] == 1024 and r["source"]["projection"] == "latlong"
     assert len(r["lights"]["rgb"]) == 16 and r["source"]["path"] == bundled_probe
-    assert "auto" in r["notes"][0]
+    assert r["notes"][0] == {"kind": "reading", "text": "projection: lat-long", "detail": "auto: the image is 2:1"}
     assert set(r["timings_ms"]) == {"load", "tables", "partition", "lights"} and r["timings_ms"]["load"] > 0
 
 
@@ -176,7 +176,8 @@ def test_bake_file_reads_band_by_band_into_a_coarse_grid(bundled_probe):
     banded = pl.bake_file(bundled_probe, lights=20, resolution="256")
     whole = pl.bake_file(bundled_probe, lights=20, resolution="256", evaluate=True)
     library = pl.bake_files([bundled_probe], lights=20, resolution="256")[0]
-    assert any("band by band" in n for n in banded["notes"]) and not any("band by band" in n for n in whole["notes"])
+    assert any("band by band" in n["text"] for n in banded["notes"])
+    assert not any("band by band" in n["text"] for n in whole["notes"])
     for r in (banded, library):
         for column in ("rgb", "direction", "rect", "solid_angle", "angular_radius", "angle"):
             assert np.array_equal(r["lights"][column], whole["lights"][column]), column

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "probelights/memory.h"
+#include "probelights/note.h"
 
 namespace probelights {
 
@@ -41,7 +42,7 @@ struct Image {
   std::string format;  // OpenImageIO's name of the file format, e.g. "openexr"
   // How the file was read, one line each, for the user (the probe's report): an 8-bit image's sRGB values
   // decoded to linear light, a data window smaller than the display window, channels ignored.
-  std::vector<std::string> notes;
+  std::vector<Note> notes;
 
   ImageView view() const { return {pixels.get(), width, height, channels}; }
 };

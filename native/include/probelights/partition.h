@@ -17,6 +17,7 @@
 
 #include "probelights/geometry.h"
 #include "probelights/moment_table.h"
+#include "probelights/note.h"
 
 namespace probelights {
 
@@ -87,7 +88,7 @@ struct Partition {
   std::vector<Rect> regions;  // in cells; together they tile the working grid exactly once
   std::vector<Cut> cuts;      // in the order they were made
   bool horizonCut = false;    // the first cut is at horizonRow
-  std::vector<std::string> notes;
+  std::vector<Note> notes;
 };
 
 // horizonRow: for a lat-long probe, the working-grid row where the horizon is (-1: none). When set and N >=

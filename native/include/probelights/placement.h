@@ -10,6 +10,7 @@
 
 #include "probelights/lights.h"
 #include "probelights/moment_table.h"
+#include "probelights/note.h"
 #include "probelights/partition.h"
 #include "probelights/probe.h"
 
@@ -57,7 +58,7 @@ struct BakeResult {
   bool horizonSplit = false;  // whether the first cut is at the horizon
   Rgb totalRgb{};             // the probe's integral of L over the sphere
   BakeTimings timings;
-  std::vector<std::string> notes;
+  std::vector<Note> notes;
 };
 
 // Throws Error for a bad request (lights < 1 or > kMaxLights).

@@ -8,6 +8,7 @@
 
 #include "probelights/geometry.h"
 #include "probelights/image.h"
+#include "probelights/note.h"
 #include "probelights/projection.h"
 
 namespace probelights {
@@ -34,7 +35,7 @@ struct PixelReport {
   double negativeLight = 0, positiveLight = 0;
   long long nonFiniteSamples = 0;  // NaN or Inf; only non-zero when NonFinitePolicy::Zero let them through
   int firstNonFiniteX = -1, firstNonFiniteY = -1;  // the first of them in row order
-  std::vector<std::string> notes;  // one line each, for the user: "auto projection: ...", "clamped ..."
+  std::vector<Note> notes;  // for the user (note.h): "projection: lat-long", "read 3 NaN/Inf samples as 0"
 
   // Adds another part's counts (a band below the ones already added).
   void add(const PixelReport& below);
@@ -73,7 +74,7 @@ class Probe {
   // The projection `choice` means for a width x height image (auto: lat-long for 2:1, with a note in `notes`;
   // throws Error naming `name` otherwise).
   static ProjectionKind resolveProjection(ProjectionChoice choice, int width, int height,
-                                          const std::string& name, std::vector<std::string>& notes);
+                                          const std::string& name, std::vector<Note>& notes);
 
   int width() const { return projection_.width(); }
   int height() const { return projection_.height(); }

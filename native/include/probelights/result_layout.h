@@ -46,7 +46,8 @@ class ResultWriter {
   virtual void integer(const char* key, long long value) = 0;
   virtual void boolean(const char* key, bool value) = 0;
   virtual void text(const char* key, const std::string& value) = 0;
-  virtual void texts(const char* key, const std::vector<std::string>& values) = 0;
+  // Notes (note.h): a list of {kind, text, detail}.
+  virtual void notes(const char* key, const std::vector<Note>& values) = 0;
   virtual void numbers(const char* key, std::span<const double> values) = 0;
   virtual void table(const char* key, std::size_t rows, const std::vector<ResultColumn>& columns) = 0;
 };

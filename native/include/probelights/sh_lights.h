@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "probelights/lights.h"
+#include "probelights/note.h"
 #include "probelights/probe.h"
 #include "probelights/sh_sampler.h"
 
@@ -23,7 +24,7 @@ struct ShLightOptions {
 
 struct ShLightResult {
   std::vector<Light> lights;
-  std::vector<std::string> notes;
+  std::vector<Note> notes;
   double projectMs = 0, assignMs = 0, lightsMs = 0;
 };
 
