@@ -36,34 +36,28 @@ std::string assetPathFrom(const std::string& usd, const std::string& probe) {
 
 BakeArgs parseBakeArgs(const std::vector<std::string>& argv) {
   BakeArgs a;
-  // The bake's options, from the table the module shares (request.h), then the command's own.
+  // The bake's options, from the table the module shares (request.h), then the command's own. The bake's are
+  // applied after the command line is read, in the table's order whatever their order here (as the module
+  // applies its keywords): a preset first, the options that change it after; the same option twice, the last.
   std::vector<Option> table;
-  // A preset is the request's start wherever it stands on the command line: applied before the other options.
-  for (std::size_t i = 0; i < argv.size(); ++i) {
-    if (argv[i] == "--preset" && i + 1 < argv.size())
-      requestOption("preset").set(a.request, "--preset", argv[i + 1]);
-    else if (argv[i].rfind("--preset=", 0) == 0)
-      requestOption("preset").set(a.request, "--preset", argv[i].substr(9));
-  }
-  for (const RequestOption& o : requestOptions()) {
-    if (o.name == "max_error") continue;  // below: the command line refuses 0, a tolerance that asks nothing
-    if (o.name == "preset") {
-      table.push_back({{"--preset"}, [](const std::string&) {}});  // applied above
-      continue;
-    }
+  std::vector<std::pair<std::size_t, std::string>> given;  // (index in requestOptions(), value)
+  const std::vector<RequestOption>& options = requestOptions();
+  auto index = [&](const std::string& name) {
+    return static_cast<std::size_t>(&requestOption(name) - options.data());
+  };
+  bool maxError = false;
+  for (std::size_t i = 0; i < options.size(); ++i) {
+    const RequestOption& o = options[i];
     std::vector<std::string> names{o.cliName()};
     if (o.name == "lights") names.push_back("-n");
-    if (o.isSwitch())
-      table.push_back(flag(names, [&a, &o] { o.set(a.request, o.cliName(), "true"); }));
+    if (o.name == "max_error")  // the command line refuses 0, a tolerance that asks nothing (below)
+      table.push_back({names, [&, i](const std::string& v) { given.emplace_back(i, v), maxError = true; }});
+    else if (o.isSwitch())
+      table.push_back(flag(names, [&given, i] { given.emplace_back(i, "true"); }));
     else
-      table.push_back({names, [&a, &o](const std::string& v) { o.set(a.request, o.cliName(), v); }});
+      table.push_back({names, [&given, i](const std::string& v) { given.emplace_back(i, v); }});
   }
-  bool maxError = false;
-  table.push_back({{"--max-error"}, [&](const std::string& v) {
-                     requestOption("max_error").set(a.request, "--max-error", v);
-                     maxError = true;
-                   }});
-  table.push_back(flag({"--both-cuts"}, [&] { a.request.accuracy.cuts = CutChoice::Both; }));
+  table.push_back(flag({"--both-cuts"}, [&] { given.emplace_back(index("cuts"), "both"); }));
   table.push_back({{"--projection"},
                    [&](const std::string& v) { a.request.probe.projection = parseProjectionChoice(v); }});
   table.push_back({{"-o", "--output"}, [&](const std::string& v) { a.output = nonEmpty("-o", v); }});
@@ -91,6 +85,9 @@ BakeArgs parseBakeArgs(const std::vector<std::string>& argv) {
   table.push_back(flag({"--previews"}, [&] { a.previews = true; }));
   table.push_back(flag({"-q", "--quiet"}, [&] { a.quiet = true; }));
   const std::vector<std::string> probes = parseOptions(argv, table);
+  std::stable_sort(given.begin(), given.end(),
+                   [](const auto& x, const auto& y) { return x.first < y.first; });
+  for (const auto& [i, value] : given) options[i].set(a.request, options[i].cliName(), value);
   if ((lightType || distance) && a.gltf.empty() && a.usd.empty())
     throw UsageError(
         "--light-type and --distance say how --gltf and --usd write the lights: add --gltf FILE or --usd "
