@@ -102,11 +102,6 @@ def unregister():
     _release_buffers()
 
 
-def max_refit_lights():
-    """The most lights the refit takes (native/include/probelights/refit.h)."""
-    return module().max_refit_lights
-
-
 def bake(pixels, **options):
     """_probelights.bake: the lights of a probe given as a float32 H x W x C array."""
     return _call("bake", pixels, **options)

@@ -17,7 +17,6 @@ def main():
     except ImportError as e:
         sys.stderr.write("probelights: the package's module cannot load (%s): reinstall probelights\n" % e)
         return 2
-    sys.stdout.flush()
     return _probelights._command([os.fsencode(a) for a in sys.argv[1:]])
 
 
