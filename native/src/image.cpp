@@ -177,6 +177,15 @@ bool windowsDiffer(const OIIO::ImageSpec& spec) {
           spec.height != spec.full_height);
 }
 
+// How every file is opened: a PFM's rows are stored bottom to top, and OpenImageIO 3.2 flips them to top to bottom
+// when it reads from memory but not when it opens a file by name unless asked (pnm:pfmflip): asked always, so a
+// PFM reads the same way whatever its size (kReadWholeBytes) and whichever OpenImageIO build reads it.
+OIIO::ImageSpec openConfig() {
+  OIIO::ImageSpec config;
+  config.attribute("pnm:pfmflip", 1);
+  return config;
+}
+
 // Opens `path` and checks it is a 2D image with pixels that a probe can be read from (checkRegularFile,
 // checkClaims, checkChannels); its spec is in->spec(). fromMemory: read a small file whole first
 // (kReadWholeBytes).
@@ -195,12 +204,15 @@ OpenImage openImage(const std::string& path, bool fromMemory = false) {
     o.bytes.resize(static_cast<std::size_t>(size));
     if (in && in->supports("ioproxy") && file.read(reinterpret_cast<char*>(o.bytes.data()), size)) {
       o.memory = std::make_unique<OIIO::Filesystem::IOMemReader>(o.bytes.data(), o.bytes.size());
-      OIIO::ImageSpec spec, config;
+      OIIO::ImageSpec spec, config = openConfig();
       if (in->set_ioproxy(o.memory.get()) && in->open(path, spec, config)) o.in = std::move(in);
     }
     if (!o.in) o = OpenImage{};  // not this way: opened as usual below, with its usual errors
   }
-  if (!o.in) o.in = OIIO::ImageInput::open(path);
+  if (!o.in) {
+    const OIIO::ImageSpec config = openConfig();
+    o.in = OIIO::ImageInput::open(path, &config);
+  }
   if (!o.in) {
     std::string why = oneLine(OIIO::geterror());
     if (why.empty()) why = "not an image OpenImageIO can read";

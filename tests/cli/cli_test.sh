@@ -41,6 +41,11 @@ expect_error "ambiguous projection" "say which it is: --projection latlong, mirr
 printf 'PF\n4 2\n-1.0\n' >"$tmp/nan.pfm"
 python3 -c "import struct,sys; v=[1.0]*24; v[4]=float('nan'); sys.stdout.buffer.write(struct.pack('<24f', *v))" >>"$tmp/nan.pfm"
 expect_error "NaN pixels" "1 NaN/Inf samples, first at pixel (1, 1); to read them as 0: --nonfinite zero$" bake "$tmp/nan.pfm"
+# A PFM's rows are stored bottom to top, whatever its size: one over 32 MB is opened by name, not read from memory
+# (image.cpp), and OpenImageIO flips it only when asked (pnm:pfmflip); unasked, this NaN was reported at row 0.
+python3 -c "import array,sys; w,h=4096,1024; a=array.array('f',[1.0])*(w*h*3); a[16]=float('nan'); sys.stdout.buffer.write(b'PF\n%d %d\n-1.0\n'%(w,h)+a.tobytes())" >"$tmp/big.pfm"
+expect_error "NaN pixels in a PFM over 32 MB" "first at pixel (5, 1023);" bake "$tmp/big.pfm" --projection latlong
+rm -f "$tmp/big.pfm"
 expect_error "light type without glTF" "add --gltf FILE" bake "$probe" --light-type point
 expect_error "distance for suns" "add --light-type point" bake "$probe" --gltf "$tmp/x.gltf" --distance 3
 expect_error "bad light type" "sun or point" bake "$probe" --gltf "$tmp/x.gltf" --light-type spot
