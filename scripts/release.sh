@@ -2,7 +2,8 @@
 # Everything a release publishes, into build/release/ (written whole: beside it, then renamed over it):
 #   probe_lights-VERSION-PLATFORM.zip   the add-on for each Blender platform (upload to extensions.blender.org)
 #   repository/                         a static extensions repository of those zips (any static web host)
-#   probelights-VERSION-*.whl, .tar.gz  the Python package's wheels (CPython 3.11, 3.13) and sdist (PyPI)
+#   probelights-VERSION-*.whl, .tar.gz  the Python package's wheels (CPython 3.11, 3.13; Linux, Windows, macOS
+#                                       arm64 and x86_64) and sdist (PyPI)
 #   SHA256SUMS                          of every file above
 # The version is the add-on manifest's (addon/probe_lights/blender_manifest.toml), the one place it is written.
 # Nothing here uploads. Run after `bash scripts/test.sh` (or on its own: it builds what it needs).
@@ -21,6 +22,9 @@ cp build/probe_lights-"$version"-*.zip "$partial/"
 cp -r build/repository "$partial/repository"
 for python in 3.11 3.13; do
   scripts/wheel.sh "$(scripts/cpython.sh "$python")" "$partial" >/dev/null
+done
+for platform in windows-x64 macos-arm64 macos-x64; do
+  scripts/wheel_platform.sh "$platform" "$partial" >/dev/null
 done
 # The sdist, made by the same backend (pip's build isolation brings scikit-build-core).
 sdist_env=${PROBELIGHTS_CACHE:-$HOME/.cache/probelights}/sdist-build-1.2.2

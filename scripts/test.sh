@@ -23,6 +23,8 @@ if ! $quick; then
   # Windows' Pythons and Blenders for the Wine tests, pinned in tests/wine/versions (downloads only the first time).
   scripts/wine-env.sh module 311 >/dev/null
   scripts/wine-env.sh module 313 >/dev/null
+  scripts/wine-env.sh pip 311 >/dev/null  # and a bare one with the wheels `pip install probelights` fetches
+  scripts/wine-env.sh pip 313 >/dev/null
   grep -E '^bpy ' tests/wine/versions | while read -r _ version; do scripts/wine-env.sh bpy "$version" >/dev/null; done
 fi
 scripts/build.sh

@@ -5,8 +5,11 @@
 // the run with a summary of what was done.
 #include <OpenImageIO/imageio.h>
 #include <OpenImageIO/strutil.h>
-#include <sys/statvfs.h>
+#ifdef _WIN32
+#include <io.h>
+#else
 #include <unistd.h>
+#endif
 
 #include <cerrno>
 #include <cstdio>
@@ -67,8 +70,7 @@ void prepareOutDir(const fs::path& dir, const std::vector<std::string>& inputs) 
                 "': " + std::string(e.what()).substr(std::string(e.what()).rfind(": ") + 2));
   }
   fs::remove(dir / ".probelights-write-test", ec);
-  struct statvfs space {};
-  if (statvfs(dir.c_str(), &space) == 0 && space.f_bavail * space.f_frsize < (1u << 20))
+  if (const fs::space_info space = fs::space(dir, ec); !ec && space.available < (1u << 20))
     throw Error("cannot write to output directory '" + dir.string() + "': less than 1 MB free");
   const fs::path summary = dir / "summary.json";
   for (const auto& input : inputs)
@@ -124,7 +126,11 @@ std::vector<std::string> outputNames(const std::vector<std::string>& paths, cons
 
 // A failed write that no later probe's write would escape: stop the run.
 bool diskFailure(const std::string& why) {
+#ifdef EDQUOT
   for (int e : {ENOSPC, EDQUOT, EROFS, EIO})
+#else  // Windows: no disk quotas in errno
+  for (int e : {ENOSPC, EROFS, EIO})
+#endif
     if (why.find(std::strerror(e)) != std::string::npos) return true;
   return false;
 }
@@ -142,7 +148,11 @@ int bakeLibrary(const BakeArgs& a) {
   static volatile bool interrupted = false;
   removeTemporariesOnSignal(&interrupted);
   bool stopped = false;
+#ifdef _WIN32
+  const bool terminal = _isatty(_fileno(stderr)) && !a.quiet;
+#else
   const bool terminal = isatty(STDERR_FILENO) && !a.quiet;
+#endif
   Stopwatch wall;
   double loadMs = 0, bakeMs = 0;
   int done = 0, failed = 0;

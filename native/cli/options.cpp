@@ -1,6 +1,8 @@
 #include "options.h"
 
+#ifndef _WIN32
 #include <unistd.h>
+#endif
 
 #include <cmath>
 #include <cstdio>
@@ -24,6 +26,9 @@ std::string spelled(const Remedy& remedy) {
 std::FILE* messages() { return userStderr ? userStderr : stderr; }
 
 void quietLibraries() {
+#ifdef _WIN32
+  // The Python package's module there reads images through Python, whose libraries print nothing.
+#else
   const int fd = dup(STDERR_FILENO);
   std::FILE* user = fd >= 0 ? fdopen(fd, "w") : nullptr;
   std::FILE* nowhere = std::fopen("/dev/null", "w");
@@ -31,6 +36,7 @@ void quietLibraries() {
   std::setvbuf(user, nullptr, _IONBF, 0);
   userStderr = user;
   stderr = nowhere;  // glibc's stderr is a variable: libpng's fprintf(stderr, ...) reads it at each call
+#endif
 }
 
 std::vector<std::string> parseOptions(const std::vector<std::string>& argv,

@@ -3,8 +3,15 @@
 #include <OpenImageIO/imageio.h>
 #include <fcntl.h>
 #include <sys/stat.h>
-#include <sys/statvfs.h>
+#ifdef _WIN32
+#include <io.h>
+#include <process.h>
+#define WIN32_LEAN_AND_MEAN
+#define NOMINMAX
+#include <windows.h>
+#else
 #include <unistd.h>
+#endif
 
 #include <atomic>
 #include <cerrno>
@@ -23,6 +30,39 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// The system calls below, each platform's. Windows (the Python package's module there): no close-on-exec or
+// mode bits, binary mode always (text mode would write \r\n), _commit flushes to the disk as fsync does, and
+// a rename that replaces its target is MoveFileEx's (C's rename refuses an existing target there).
+#ifdef _WIN32
+int openFile(const char* path, int flags, int mode = 0) {
+  return _open(path, flags | _O_BINARY | _O_NOINHERIT, mode);
+}
+long long writeSome(int fd, const char* p, std::size_t n) {
+  return _write(fd, p, static_cast<unsigned>(std::min<std::size_t>(n, std::size_t{1} << 30)));
+}
+int syncFile(int fd) { return _commit(fd); }
+int setMode(int, unsigned) { return 0; }
+int closeFile(int fd) { return _close(fd); }
+int processId() { return _getpid(); }
+void removeFile(const char* path) { _unlink(path); }
+bool replaceFile(const char* from, const char* to) {
+  if (MoveFileExA(from, to, MOVEFILE_REPLACE_EXISTING | MOVEFILE_WRITE_THROUGH)) return true;
+  errno = GetLastError() == ERROR_ACCESS_DENIED ? EACCES : EIO;
+  return false;
+}
+constexpr int kCloseOnExec = 0;
+#else
+int openFile(const char* path, int flags, int mode = 0) { return ::open(path, flags, mode); }
+long long writeSome(int fd, const char* p, std::size_t n) { return ::write(fd, p, n); }
+int syncFile(int fd) { return ::fsync(fd); }
+int setMode(int fd, unsigned mode) { return ::fchmod(fd, static_cast<mode_t>(mode)); }
+int closeFile(int fd) { return ::close(fd); }
+int processId() { return static_cast<int>(::getpid()); }
+void removeFile(const char* path) { ::unlink(path); }
+bool replaceFile(const char* from, const char* to) { return std::rename(from, to) == 0; }
+constexpr int kCloseOnExec = O_CLOEXEC;
+#endif
+
 // The temporary files being written, for the signal handler to remove: fixed slots of strdup'd paths, read
 // with atomic loads only (async-signal-safe, as are unlink and raise).
 constexpr int kSlots = 16;
@@ -36,7 +76,7 @@ void onSignal(int sig) {
     return;
   }
   for (auto& slot : temporaries)
-    if (char* p = slot.load()) unlink(p);
+    if (char* p = slot.load()) removeFile(p);
   std::signal(sig, SIG_DFL);
   std::raise(sig);
 }
@@ -51,7 +91,7 @@ class Temporary {
     // format by it). Appended piece by piece: GCC 12 warns (-Wrestrict, falsely) on the one-expression form.
     std::string name = ".";
     name += target.filename().string();
-    name += ".part-" + std::to_string(getpid()) + "-" + std::to_string(counter++);
+    name += ".part-" + std::to_string(processId()) + "-" + std::to_string(counter++);
     name += target.extension().string();
     path_ = (dir / name).string();
     char* copy = strdup(path_.c_str());
@@ -73,7 +113,7 @@ class Temporary {
   Temporary& operator=(const Temporary&) = delete;
   const std::string& path() const { return path_; }
   void renamedTo(const std::string& target) {
-    if (std::rename(path_.c_str(), target.c_str()) != 0) {
+    if (!replaceFile(path_.c_str(), target.c_str())) {
       const int e = errno;
       throw Error("cannot write '" + target + "': " + std::strerror(e));
     }
@@ -93,7 +133,7 @@ Error writeError(const std::string& path, int e) {
 // Writes all of `bytes` to the open descriptor; false with errno set when they did not all go.
 bool writeAll(int fd, std::string_view bytes) {
   while (!bytes.empty()) {
-    const ssize_t n = ::write(fd, bytes.data(), bytes.size());
+    const long long n = writeSome(fd, bytes.data(), bytes.size());
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) {
       if (n == 0) errno = EIO;
@@ -106,7 +146,7 @@ bool writeAll(int fd, std::string_view bytes) {
 
 // What the target is: missing, a regular file (mode kept for its replacement), or something else.
 enum class Target { Missing, File, Other };
-Target inspect(const std::string& path, mode_t* mode) {
+Target inspect(const std::string& path, unsigned* mode) {
   struct stat st {};
   if (stat(path.c_str(), &st) != 0) return Target::Missing;
   if (S_ISDIR(st.st_mode)) throw Error("cannot write '" + path + "': it is a directory");
@@ -116,12 +156,12 @@ Target inspect(const std::string& path, mode_t* mode) {
 }
 
 // Flushes an existing file at `path` to the disk; the system's error otherwise.
-void syncFile(const std::string& path, mode_t mode, const std::string& target) {
-  const int fd = open(path.c_str(), O_RDONLY | O_CLOEXEC);
+void syncPath(const std::string& path, unsigned mode, const std::string& target) {
+  const int fd = openFile(path.c_str(), O_RDWR | kCloseOnExec);
   if (fd < 0) throw writeError(target, errno);
-  const bool ok = fsync(fd) == 0 && (mode == 0 || fchmod(fd, mode) == 0);
+  const bool ok = syncFile(fd) == 0 && (mode == 0 || setMode(fd, mode) == 0);
   const int e = errno;
-  close(fd);
+  closeFile(fd);
   if (!ok) throw writeError(target, e);
 }
 
@@ -140,21 +180,21 @@ std::string resolved(const std::string& path) {
 void writeWhole(const std::string& pathIn, std::string_view bytes) {
   if (pathIn.empty()) throw Error("an output file name is empty");
   const std::string path = resolved(pathIn);
-  mode_t mode = 0;
+  unsigned mode = 0;
   if (inspect(path, &mode) == Target::Other) {
-    const int fd = open(path.c_str(), O_WRONLY | O_CLOEXEC);
+    const int fd = openFile(path.c_str(), O_WRONLY | kCloseOnExec);
     if (fd < 0) throw writeError(pathIn, errno);
     const bool ok = writeAll(fd, bytes);
     const int e = errno;
-    if (close(fd) != 0 || !ok) throw writeError(pathIn, ok ? errno : e);
+    if (closeFile(fd) != 0 || !ok) throw writeError(pathIn, ok ? errno : e);
     return;
   }
   Temporary tmp{fs::path(path)};
-  const int fd = open(tmp.path().c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+  const int fd = openFile(tmp.path().c_str(), O_WRONLY | O_CREAT | O_EXCL | kCloseOnExec, 0666);
   if (fd < 0) throw writeError(pathIn, errno);
-  bool ok = writeAll(fd, bytes) && fsync(fd) == 0 && (mode == 0 || fchmod(fd, mode) == 0);
+  bool ok = writeAll(fd, bytes) && syncFile(fd) == 0 && (mode == 0 || setMode(fd, mode) == 0);
   int e = errno;
-  if (close(fd) != 0 && ok) ok = false, e = errno;
+  if (closeFile(fd) != 0 && ok) ok = false, e = errno;
   if (!ok) throw writeError(pathIn, e);
   tmp.renamedTo(path);
 }
@@ -162,11 +202,11 @@ void writeWhole(const std::string& pathIn, std::string_view bytes) {
 void writeWholeVia(const std::string& pathIn, const std::function<void(const std::string& tmp)>& write) {
   if (pathIn.empty()) throw Error("an output file name is empty");
   const std::string path = resolved(pathIn);
-  mode_t mode = 0;
+  unsigned mode = 0;
   if (inspect(path, &mode) == Target::Other) return write(path);
   Temporary tmp{fs::path(path)};
   write(tmp.path());
-  syncFile(tmp.path(), mode, pathIn);
+  syncPath(tmp.path(), mode, pathIn);
   tmp.renamedTo(path);
 }
 
@@ -181,8 +221,11 @@ void writeImageWhole(const std::string& path, const std::function<void(const std
                        in->read_image(0, 0, 0, in->spec().nchannels, OIIO::TypeDesc::FLOAT, pixels.data()) &&
                        !in->has_error();
     if (!whole) {
-      struct statvfs fs {};
-      const bool full = statvfs(tmp.c_str(), &fs) == 0 && fs.f_bavail == 0;
+      std::error_code ec;
+      const bool full =
+          fs::space(fs::path(tmp).parent_path().empty() ? fs::path(".") : fs::path(tmp).parent_path(), ec)
+                  .available == 0 &&
+          !ec;
       throw Error("cannot write '" + path + "': " +
                   (full ? std::string(std::strerror(ENOSPC)) : "the image written does not read back whole"));
     }
@@ -190,7 +233,10 @@ void writeImageWhole(const std::string& path, const std::function<void(const std
 }
 
 void writeStdout(std::string_view bytes) {
-  if (std::fwrite(bytes.data(), 1, bytes.size(), stdout) != bytes.size() || std::fflush(stdout) != 0) {
+  // ferror too: a failed write flushed earlier by somebody else (a library's fflush(NULL)) is still a
+  // failure.
+  if (std::fwrite(bytes.data(), 1, bytes.size(), stdout) != bytes.size() || std::fflush(stdout) != 0 ||
+      std::ferror(stdout)) {
     const int e = errno;
     throw Error(std::string("cannot write to standard output: ") + std::strerror(e));
   }
@@ -198,7 +244,11 @@ void writeStdout(std::string_view bytes) {
 
 void removeTemporariesOnSignal(volatile bool* stopAfter) {
   stopFlag = stopAfter;
+#ifdef SIGHUP
   for (int sig : {SIGINT, SIGTERM, SIGHUP}) std::signal(sig, onSignal);
+#else
+  for (int sig : {SIGINT, SIGTERM}) std::signal(sig, onSignal);
+#endif
 }
 
 bool sameFile(const std::string& a, const std::string& b) {

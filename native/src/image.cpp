@@ -177,9 +177,10 @@ bool windowsDiffer(const OIIO::ImageSpec& spec) {
           spec.height != spec.full_height);
 }
 
-// How every file is opened: a PFM's rows are stored bottom to top, and OpenImageIO 3.2 flips them to top to bottom
-// when it reads from memory but not when it opens a file by name unless asked (pnm:pfmflip): asked always, so a
-// PFM reads the same way whatever its size (kReadWholeBytes) and whichever OpenImageIO build reads it.
+// How every file is opened: a PFM's rows are stored bottom to top, and OpenImageIO 3.2 flips them to top to
+// bottom when it reads from memory but not when it opens a file by name unless asked (pnm:pfmflip): asked
+// always, so a PFM reads the same way whatever its size (kReadWholeBytes) and whichever OpenImageIO build
+// reads it.
 OIIO::ImageSpec openConfig() {
   OIIO::ImageSpec config;
   config.attribute("pnm:pfmflip", 1);

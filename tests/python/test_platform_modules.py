@@ -3,6 +3,8 @@ platform and holds a module for CPython 3.11 and 3.13 under that platform's exte
 imports KERNEL32, the UCRT and python3XY.dll and nothing else, a macOS module libSystem alone, for macOS 11 on, the
 arm64 one with a code signature (arm64 loads nothing unsigned); each exports the module's init function alone. And the macOS
 pyconfig.h derived by scripts/macos_pyconfig.py agrees with the target's compiler on every size and alignment.
+The Python package's Windows and macOS wheels (scripts/wheel_platform.sh, into PROBELIGHTS_PLATFORM_WHEELS) are
+read the same way: their modules need no more than the add-on's, and each wheel carries the package and its tag.
 The Windows modules also run, under Wine (tests/wine/); the macOS ones cannot run here."""
 
 import os
@@ -30,12 +32,46 @@ def zip_path(platform):
     return os.path.join(BUILD, "probe_lights-%s-%s.zip" % (VERSION, platform.replace("-", "_")))
 
 
-def module_bytes(platform, name):
-    path = zip_path(platform)
+WHEELS = os.environ.get("PROBELIGHTS_PLATFORM_WHEELS")  # the package_platform_wheels test's (tests/CMakeLists.txt)
+WHEEL_TAGS = {"windows-x64": "win_amd64", "macos-arm64": "macosx_11_0_arm64", "macos-x64": "macosx_11_0_x86_64"}
+
+
+def wheel_path(platform, abi):
+    return os.path.join(WHEELS, "probelights-%s-cp%s-cp%s-%s.whl" % (VERSION, abi, abi, WHEEL_TAGS[platform]))
+
+
+def module_bytes(platform, name, source="zip"):
+    abi = re.search(r"cp(?:ython-)?(\d+)", name).group(1)
+    if source == "wheel" and not WHEELS:
+        pytest.skip("no platform wheels (PROBELIGHTS_PLATFORM_WHEELS)")
+    path = zip_path(platform) if source == "zip" else wheel_path(platform, abi)
     if not os.path.exists(path):
-        pytest.skip("%s not built (PROBELIGHTS_PLATFORMS)" % os.path.basename(path))
+        pytest.skip("%s not built (%s)" % (os.path.basename(path), "PROBELIGHTS_PLATFORMS" if source == "zip"
+                                           else "scripts/wheel_platform.sh"))
     with zipfile.ZipFile(path) as z:
-        return z.read("probe_lights/" + name)
+        return z.read(("probe_lights/" if source == "zip" else "probelights/") + name)
+
+
+@pytest.mark.parametrize("platform", sorted(WHEEL_TAGS))
+@pytest.mark.parametrize("abi", ["311", "313"])
+def test_each_wheel_holds_the_package_its_module_and_its_tag(platform, abi):
+    if not WHEELS:
+        pytest.skip("no platform wheels (PROBELIGHTS_PLATFORM_WHEELS)")
+    path = wheel_path(platform, abi)
+    if not os.path.exists(path):
+        pytest.skip("%s not built (scripts/wheel_platform.sh)" % os.path.basename(path))
+    with zipfile.ZipFile(path) as z:
+        names = set(z.namelist())
+        info = "probelights-%s.dist-info/" % VERSION
+        wheel = z.read(info + "WHEEL").decode()
+        record = z.read(info + "RECORD").decode()
+        metadata = z.read(info + "METADATA").decode()
+    module = MODULES[platform][["311", "313"].index(abi)]
+    assert {"probelights/__init__.py", "probelights/__init__.pyi", "probelights/_command.py",
+            "probelights/" + module, info + "entry_points.txt", info + "licenses/LICENSE"} <= names
+    assert "Tag: cp%s-cp%s-%s" % (abi, abi, WHEEL_TAGS[platform]) in wheel.splitlines()
+    assert {line.split(",")[0] for line in record.splitlines()} == names
+    assert "Requires-Dist: openimageio==" in metadata and "Version: " + VERSION in metadata
 
 
 def run(*command):
@@ -56,11 +92,12 @@ def test_each_zip_names_its_platform_and_holds_its_modules(platform):
     assert "probe_lights/__init__.py" in names and not any("__pycache__" in n for n in names)
 
 
+@pytest.mark.parametrize("source", ["zip", "wheel"])
 @pytest.mark.parametrize("abi", ["311", "313"])
-def test_windows_modules_import_the_system_the_ucrt_and_python_alone(abi, tmp_path):
+def test_windows_modules_import_the_system_the_ucrt_and_python_alone(abi, source, tmp_path):
     name = "_probelights.cp%s-win_amd64.pyd" % abi
     path = tmp_path / name
-    path.write_bytes(module_bytes("windows-x64", name))
+    path.write_bytes(module_bytes("windows-x64", name, source))
     dump = run("x86_64-w64-mingw32-objdump", "-p", str(path))
     assert "file format pei-x86-64" in run("x86_64-w64-mingw32-objdump", "-f", str(path))
     dlls = set(re.findall(r"DLL Name: (\S+)", dump))
@@ -70,12 +107,13 @@ def test_windows_modules_import_the_system_the_ucrt_and_python_alone(abi, tmp_pa
     assert exports == ["PyInit__probelights"]
 
 
+@pytest.mark.parametrize("source", ["zip", "wheel"])
 @pytest.mark.parametrize("platform, cpu", [("macos-arm64", "ARM64"), ("macos-x64", "X86_64")])
 @pytest.mark.parametrize("abi", ["311", "313"])
-def test_macos_modules_need_libsystem_alone_and_are_signed(platform, cpu, abi, tmp_path):
+def test_macos_modules_need_libsystem_alone_and_are_signed(platform, cpu, abi, source, tmp_path):
     name = "_probelights.cpython-%s-darwin.so" % abi
     path = tmp_path / name
-    path.write_bytes(module_bytes(platform, name))
+    path.write_bytes(module_bytes(platform, name, source))
     headers = run("llvm-objdump-14", "--macho", "--private-headers", str(path))
     assert re.search(r"\bMH_MAGIC_64\s+%s\b" % cpu, headers), headers[:400]
     used = [u.split()[0] for u in run("llvm-objdump-14", "--macho", "--dylibs-used", str(path)).splitlines()[1:]]

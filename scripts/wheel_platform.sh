@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# Builds the Python package's wheels for Windows or macOS (CPython 3.11 and 3.13) on this Linux machine: the
+# package's modules by a zig sub-build of this tree (cmake/zig-toolchain.cmake, PROBELIGHTS_PACKAGE_MODULES: the
+# files read and written by the openimageio wheel's Python binding, python/CMakeLists.txt), each wrapped in a wheel
+# with the Linux wheels' metadata (scripts/lib/platform_wheel.py).
+#   scripts/wheel_platform.sh windows-x64|macos-arm64|macos-x64 OUT_DIR    -> prints the wheels' paths
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+platform=$1 out=$2
+case $platform in
+  windows-x64) tag=win_amd64 ;;
+  macos-arm64) tag=macosx_11_0_arm64 ;;   # zig's deployment target (cmake/zig-toolchain.cmake)
+  macos-x64)   tag=macosx_11_0_x86_64 ;;
+  *) echo "usage: wheel_platform.sh windows-x64|macos-arm64|macos-x64 OUT_DIR" >&2; exit 2 ;;
+esac
+cross=$("$root/scripts/cross-toolchain.sh")
+build=$root/build/package-platforms/$platform
+cmake -S "$root" -B "$build" -DCMAKE_TOOLCHAIN_FILE="$root/cmake/zig-toolchain.cmake" -DCMAKE_BUILD_TYPE=Release \
+  -DPROBELIGHTS_PLATFORM="$platform" -DPROBELIGHTS_CROSS="$cross" -DPROBELIGHTS_PACKAGE_MODULES=ON >/dev/null
+cmake --build "$build" -j"$(nproc)" --target _probelights_package_py311 _probelights_package_py313 >&2
+for abi in 311 313; do
+  if [[ $platform == windows-x64 ]]; then module=$build/package/_probelights.cp$abi-win_amd64.pyd
+  else module=$build/package/_probelights.cpython-$abi-darwin.so; fi
+  python3 "$root/scripts/lib/platform_wheel.py" "$module" "cp$abi-cp$abi-$tag" "$out"
+done
