@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Builds the Python package's wheels for Windows or macOS (CPython 3.11 and 3.13) on this Linux machine: the
-# package's modules by a zig sub-build of this tree (cmake/zig-toolchain.cmake, PROBELIGHTS_PACKAGE_MODULES: the
-# files read and written by the openimageio wheel's Python binding, python/CMakeLists.txt), each wrapped in a wheel
-# with the Linux wheels' metadata (scripts/lib/platform_wheel.py).
+# package's modules in the zig sub-build of the add-on's modules for that platform (build/platforms/PLATFORM,
+# cmake/zig-toolchain.cmake; configured here if the main build has not: the portable core is compiled once for
+# both), their files read and written by the openimageio wheel's Python binding (python/CMakeLists.txt), each
+# wrapped in a wheel with the Linux wheels' metadata (scripts/lib/platform_wheel.py).
 #   scripts/wheel_platform.sh windows-x64|macos-arm64|macos-x64 OUT_DIR    -> prints the wheels' paths
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -14,9 +15,11 @@ case $platform in
   *) echo "usage: wheel_platform.sh windows-x64|macos-arm64|macos-x64 OUT_DIR" >&2; exit 2 ;;
 esac
 cross=$("$root/scripts/cross-toolchain.sh")
-build=$root/build/package-platforms/$platform
-cmake -S "$root" -B "$build" -DCMAKE_TOOLCHAIN_FILE="$root/cmake/zig-toolchain.cmake" -DCMAKE_BUILD_TYPE=Release \
-  -DPROBELIGHTS_PLATFORM="$platform" -DPROBELIGHTS_CROSS="$cross" -DPROBELIGHTS_PACKAGE_MODULES=ON >/dev/null
+build=$root/build/platforms/$platform
+# The arguments of the main build's sub-build (addon/CMakeLists.txt, ExternalProject_Add).
+[[ -f $build/CMakeCache.txt ]] ||
+  cmake -S "$root" -B "$build" -DCMAKE_TOOLCHAIN_FILE="$root/cmake/zig-toolchain.cmake" -DCMAKE_BUILD_TYPE=Release \
+    -DPROBELIGHTS_PLATFORM="$platform" -DPROBELIGHTS_CROSS="$cross" >/dev/null
 cmake --build "$build" -j"$(nproc)" --target _probelights_package_py311 _probelights_package_py313 >&2
 for abi in 311 313; do
   if [[ $platform == windows-x64 ]]; then module=$build/package/_probelights.cp$abi-win_amd64.pyd

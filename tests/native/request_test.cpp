@@ -109,8 +109,11 @@ TEST(Request, APresetIsTheStartTheOtherOptionsChange) {
     EXPECT_EQ(requestOption(name).get(r), value) << name;
     named.insert(name);
   }
-  for (const RequestOption& o : requestOptions())
-    if (!named.count(o.name) && o.name != "preset") EXPECT_EQ(o.get(r), o.get(defaults)) << o.name;
+  for (const RequestOption& o : requestOptions()) {
+    if (!named.count(o.name) && o.name != "preset") {
+      EXPECT_EQ(o.get(r), o.get(defaults)) << o.name;
+    }
+  }
   EXPECT_EQ(requestOption("sun_cones").get(r), "above-horizon");
   requestOption("preset").set(r, "preset", "blender");
   EXPECT_EQ(requestOption("sun_cones").get(r), "free");

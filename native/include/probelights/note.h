@@ -20,8 +20,9 @@ inline const char* toString(NoteKind kind) {
 
 struct Note {
   NoteKind kind = NoteKind::Reading;
-  std::string text;    // one line
-  std::string detail;  // the figures behind it, or "" (the CLI shows them in parentheses; the panel does not)
+  std::string text;  // one line
+  // The figures behind it, or "" (the CLI shows them in parentheses; the panel does not).
+  std::string detail = {};
   std::string line() const { return detail.empty() ? text : text + " (" + detail + ")"; }
   bool operator==(const Note&) const = default;
 };
