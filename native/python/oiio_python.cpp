@@ -35,6 +35,27 @@ std::string pythonError(py::error_already_set& e) {
   return why;
 }
 
+// Runs f() with the GIL taken; a Python exception becomes `failed`, its message kept in `error`.
+template <class R, class F>
+R guarded(std::string& error, R failed, F&& f) {
+  py::gil_scoped_acquire gil;
+  try {
+    return f();
+  } catch (py::error_already_set& e) {
+    error = pythonError(e);
+    return failed;
+  }
+}
+
+// What a failed call said: ours (a Python exception) before the binding's own geterror().
+std::string errorOf(const py::object& object, std::string& ours, bool clear) {
+  std::string why = ours, ignored;
+  if (clear) ours.clear();
+  const std::string theirs =
+      guarded(ignored, std::string(), [&] { return object.attr("geterror")(clear).cast<std::string>(); });
+  return why.empty() ? theirs : why;
+}
+
 const char* typeName(TypeDesc t) {
   switch (t.basetype) {
     case TypeDesc::UINT8:
@@ -173,8 +194,7 @@ std::string lastError;  // what the last failed open or create said (OIIO::geter
 }
 
 ImageInput::unique_ptr ImageInput::open(const std::string& filename, const ImageSpec* config) {
-  py::gil_scoped_acquire gil;
-  try {
+  return guarded(lastError, unique_ptr(), [&]() -> unique_ptr {
     py::object in =
         config ? oiio().attr("ImageInput").attr("open")(filename, pythonSpec(*config, TypeDesc::FLOAT))
                : oiio().attr("ImageInput").attr("open")(filename);
@@ -187,67 +207,39 @@ ImageInput::unique_ptr ImageInput::open(const std::string& filename, const Image
     input->format_ = in.attr("format_name")().cast<std::string>();
     input->in_.reset(hold(std::move(in)));
     return input;
-  } catch (py::error_already_set& e) {
-    lastError = pythonError(e);
-    return nullptr;
-  }
+  });
 }
 
 bool ImageInput::read_image(int subimage, int miplevel, int chbegin, int chend, TypeDesc format, void* data) {
-  py::gil_scoped_acquire gil;
-  try {
-    const std::size_t count = static_cast<std::size_t>(spec_.image_pixels()) * (chend - chbegin);
-    return format == TypeDesc::FLOAT &&
-           copyOut(held(in_).attr("read_image")(subimage, miplevel, chbegin, chend, "float"), data, count);
-  } catch (py::error_already_set& e) {
-    error_ = pythonError(e);
-    return false;
-  }
+  const std::size_t count = static_cast<std::size_t>(spec_.image_pixels()) * (chend - chbegin);
+  return format == TypeDesc::FLOAT && guarded(error_, false, [&] {
+           return copyOut(held(in_).attr("read_image")(subimage, miplevel, chbegin, chend, "float"), data,
+                          count);
+         });
 }
 
 bool ImageInput::read_scanlines(int subimage, int miplevel, int ybegin, int yend, int z, int chbegin,
                                 int chend, TypeDesc format, void* data) {
-  py::gil_scoped_acquire gil;
-  try {
-    const std::size_t count = static_cast<std::size_t>(yend - ybegin) * spec_.width * (chend - chbegin);
-    return format == TypeDesc::FLOAT &&
-           copyOut(
-               held(in_).attr("read_scanlines")(subimage, miplevel, ybegin, yend, z, chbegin, chend, "float"),
-               data, count);
-  } catch (py::error_already_set& e) {
-    error_ = pythonError(e);
-    return false;
-  }
+  const std::size_t count = static_cast<std::size_t>(yend - ybegin) * spec_.width * (chend - chbegin);
+  return format == TypeDesc::FLOAT && guarded(error_, false, [&] {
+           py::object rows =
+               held(in_).attr("read_scanlines")(subimage, miplevel, ybegin, yend, z, chbegin, chend, "float");
+           return copyOut(rows, data, count);
+         });
 }
 
 bool ImageInput::has_error() const {
-  if (!error_.empty()) return true;
-  py::gil_scoped_acquire gil;
-  try {
+  std::string ignored;
+  return !error_.empty() || guarded(ignored, true, [&] {
     py::object flag = held(in_).attr("has_error");  // a property in OpenImageIO 3's binding
     return (PyCallable_Check(flag.ptr()) ? flag() : flag).cast<bool>();
-  } catch (py::error_already_set& e) {
-    pythonError(e);
-    return true;
-  }
+  });
 }
 
-std::string ImageInput::geterror(bool clear) {
-  std::string why = error_;
-  if (clear) error_.clear();
-  py::gil_scoped_acquire gil;
-  try {
-    const std::string theirs = held(in_).attr("geterror")(clear).cast<std::string>();
-    return why.empty() ? theirs : why;
-  } catch (py::error_already_set& e) {
-    pythonError(e);
-    return why;
-  }
-}
+std::string ImageInput::geterror(bool clear) { return errorOf(held(in_), error_, clear); }
 
 ImageOutput::unique_ptr ImageOutput::create(const std::string& filename) {
-  py::gil_scoped_acquire gil;
-  try {
+  return guarded(lastError, unique_ptr(), [&]() -> unique_ptr {
     py::object out = oiio().attr("ImageOutput").attr("create")(filename);
     if (out.is_none()) {
       lastError = oiio().attr("geterror")().cast<std::string>();
@@ -256,21 +248,14 @@ ImageOutput::unique_ptr ImageOutput::create(const std::string& filename) {
     unique_ptr output(new ImageOutput);
     output->out_.reset(hold(std::move(out)));
     return output;
-  } catch (py::error_already_set& e) {
-    lastError = pythonError(e);
-    return nullptr;
-  }
+  });
 }
 
 bool ImageOutput::open(const std::string& filename, const ImageSpec& spec) {
-  py::gil_scoped_acquire gil;
-  try {
-    spec_ = spec;
+  spec_ = spec;
+  return guarded(error_, false, [&] {
     return held(out_).attr("open")(filename, pythonSpec(spec, spec.format)).cast<bool>();
-  } catch (py::error_already_set& e) {
-    error_ = pythonError(e);
-    return false;
-  }
+  });
 }
 
 bool ImageOutput::write_image(TypeDesc format, const void* data, std::ptrdiff_t xstride,
@@ -282,37 +267,16 @@ bool ImageOutput::write_image(TypeDesc format, const void* data, std::ptrdiff_t 
     for (int x = 0; x < W; ++x)
       std::memcpy(&packed[(static_cast<std::size_t>(y) * W + x) * C],
                   static_cast<const char*>(data) + y * ystride + x * xstride, sizeof(float) * C);
-  py::gil_scoped_acquire gil;
-  try {
+  return guarded(error_, false, [&] {
     return held(out_).attr("write_image")(arrayOf(packed.data(), W, H, C)).cast<bool>();
-  } catch (py::error_already_set& e) {
-    error_ = pythonError(e);
-    return false;
-  }
+  });
 }
 
 bool ImageOutput::close() {
-  py::gil_scoped_acquire gil;
-  try {
-    return held(out_).attr("close")().cast<bool>();
-  } catch (py::error_already_set& e) {
-    error_ = pythonError(e);
-    return false;
-  }
+  return guarded(error_, false, [&] { return held(out_).attr("close")().cast<bool>(); });
 }
 
-std::string ImageOutput::geterror(bool clear) {
-  std::string why = error_;
-  if (clear) error_.clear();
-  py::gil_scoped_acquire gil;
-  try {
-    const std::string theirs = held(out_).attr("geterror")(clear).cast<std::string>();
-    return why.empty() ? theirs : why;
-  } catch (py::error_already_set& e) {
-    pythonError(e);
-    return why;
-  }
-}
+std::string ImageOutput::geterror(bool clear) { return errorOf(held(out_), error_, clear); }
 
 ImageBuf::ImageBuf(const ImageSpec& spec)
     : spec_(spec), pixels_(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels, 0.0f) {}
