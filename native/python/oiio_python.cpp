@@ -190,8 +190,10 @@ void PyRef::reset(void* object) {
 PyRef::~PyRef() { reset(nullptr); }
 
 namespace {
-std::string lastError;  // what the last failed open or create said (OIIO::geterror())
-}
+// What the last failed open or create said (OIIO::geterror()), per thread as OpenImageIO keeps it: a library
+// bake opens probes on several threads at once.
+thread_local std::string lastError;
+}  // namespace
 
 ImageInput::unique_ptr ImageInput::open(const std::string& filename, const ImageSpec* config) {
   return guarded(lastError, unique_ptr(), [&]() -> unique_ptr {
