@@ -27,13 +27,7 @@ for platform in windows-x64 macos-arm64 macos-x64; do
   scripts/wheel_platform.sh "$platform" "$partial" >/dev/null
 done
 # The sdist, made by the same backend (pip's build isolation brings scikit-build-core).
-sdist_env=${PROBELIGHTS_CACHE:-$HOME/.cache/probelights}/sdist-build-1.2.2
-if [[ ! -f $sdist_env/.complete ]]; then
-  rm -rf "$sdist_env"; python3 -m venv "$sdist_env"
-  "$sdist_env/bin/pip" install -q --disable-pip-version-check build==1.2.2
-  touch "$sdist_env/.complete"
-fi
-"$sdist_env/bin/python" -m build --sdist --outdir "$partial" "$root" >/dev/null
+"$(scripts/lib/build-env.sh)" -m build --sdist --outdir "$partial" "$root" >/dev/null
 (cd "$partial" && find . -type f ! -name SHA256SUMS | sed 's|^\./||' | sort | xargs sha256sum >SHA256SUMS)
 rm -rf "$out"; mv "$partial" "$out"
 echo "release $version in $out:"

@@ -21,8 +21,24 @@ build=$root/build/platforms/$platform
   cmake -S "$root" -B "$build" -DCMAKE_TOOLCHAIN_FILE="$root/cmake/zig-toolchain.cmake" -DCMAKE_BUILD_TYPE=Release \
     -DPROBELIGHTS_PLATFORM="$platform" -DPROBELIGHTS_CROSS="$cross" >/dev/null
 cmake --build "$build" -j"$(nproc)" --target _probelights_package_py311 _probelights_package_py313 >&2
+# The wheel's metadata as pyproject.toml's backend writes it for the Linux wheels (no compile: PEP 517's
+# prepare_metadata_for_build_wheel, in an isolated environment as pip's).
+metadata=$(mktemp -d)
+trap 'rm -rf "$metadata"' EXIT
+dist_info=$("$("$root/scripts/lib/build-env.sh")" - "$root" "$metadata" <<'PY'
+import sys
+from build import ProjectBuilder
+from build.env import DefaultIsolatedEnv
+with DefaultIsolatedEnv() as env:
+    builder = ProjectBuilder.from_isolated_env(env, sys.argv[1])
+    env.install(builder.build_system_requires)
+    env.install(builder.get_requires_for_build("wheel"))
+    print(builder.metadata_path(sys.argv[2]))
+PY
+)
+dist_info=${dist_info##*$'\n'}  # its last line (the backend says what it runs first)
 for abi in 311 313; do
   if [[ $platform == windows-x64 ]]; then module=$build/package/_probelights.cp$abi-win_amd64.pyd
   else module=$build/package/_probelights.cpython-$abi-darwin.so; fi
-  python3 "$root/scripts/lib/platform_wheel.py" "$module" "cp$abi-cp$abi-$tag" "$out"
+  python3 "$root/scripts/lib/platform_wheel.py" "$module" "$dist_info" "cp$abi-cp$abi-$tag" "$out"
 done

@@ -1,7 +1,8 @@
 """Writes the Python package's wheel for Windows or macOS around a module built by the zig sub-build
-(scripts/wheel_platform.sh), with the metadata pyproject.toml gives the Linux wheels (scikit-build-core writes
-those): the same METADATA, entry point and licence; the version is the add-on manifest's.
-    platform_wheel.py MODULE TAG OUT_DIR      -> prints the wheel's path
+(scripts/wheel_platform.sh) and the .dist-info that pyproject.toml's backend writes (scikit-build-core's
+prepare_metadata_for_build_wheel, run there: the Linux wheels' METADATA, entry point and licence, made by the same
+code); only WHEEL's tag is this platform's.
+    platform_wheel.py MODULE DIST_INFO TAG OUT_DIR      -> prints the wheel's path
 TAG is a wheel tag, e.g. cp311-cp311-win_amd64 or cp313-cp313-macosx_11_0_arm64. The wheel is written whole
 (a temporary name, then renamed)."""
 
@@ -10,34 +11,17 @@ import hashlib
 import os
 import re
 import sys
-import tomllib
 import zipfile
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
 
 
-def metadata(project, version, readme):
-    lines = ["Metadata-Version: 2.4", "Name: " + project["name"], "Version: " + version,
-             "Summary: " + project["description"], "Keywords: " + ",".join(project["keywords"])]
-    lines += ["Author: " + a["name"] for a in project["authors"]]
-    lines += ["License-Expression: " + project["license"]]
-    lines += ["License-File: " + f for f in project["license-files"]]
-    lines += ["Classifier: " + c for c in project["classifiers"]]
-    lines += ["Requires-Python: " + project["requires-python"]]
-    lines += ["Requires-Dist: " + d for d in project["dependencies"]]
-    lines += ["Description-Content-Type: text/markdown", "", readme]
-    return "\n".join(lines)
-
-
-def main(module, tag, out_dir):
-    with open(os.path.join(ROOT, "pyproject.toml"), "rb") as f:
-        project = tomllib.load(f)["project"]
-    with open(os.path.join(ROOT, "addon", "probe_lights", "blender_manifest.toml"), "rb") as f:
-        version = tomllib.load(f)["version"]
-    with open(os.path.join(ROOT, project["readme"]), encoding="utf-8") as f:
-        readme = f.read()
-    name = project["name"]
-    info = "%s-%s.dist-info" % (name, version)
+def main(module, dist_info, tag, out_dir):
+    if not os.path.isfile(os.path.join(dist_info, "METADATA")):
+        sys.exit("platform_wheel.py: no METADATA in '%s'" % dist_info)
+    info = os.path.basename(dist_info.rstrip("/"))
+    name = info.split("-")[0]
+    version = info[len(name) + 1:-len(".dist-info")]
     files = []  # (name in the wheel, bytes)
     package = os.path.join(ROOT, "python", name)
     for entry in sorted(os.listdir(package)):
@@ -46,14 +30,16 @@ def main(module, tag, out_dir):
                 files.append(("%s/%s" % (name, entry), f.read()))
     with open(module, "rb") as f:
         files.append(("%s/%s" % (name, os.path.basename(module)), f.read()))
-    files.append((info + "/METADATA", metadata(project, version, readme).encode()))
-    files.append((info + "/WHEEL", ("Wheel-Version: 1.0\nGenerator: probelights platform_wheel.py\n"
-                                    "Root-Is-Purelib: false\nTag: %s\n\n" % tag).encode()))
-    scripts = "".join("%s = %s\n" % kv for kv in project["scripts"].items())
-    files.append((info + "/entry_points.txt", ("[console_scripts]\n" + scripts + "\n").encode()))
-    for lic in project["license-files"]:
-        with open(os.path.join(ROOT, lic), "rb") as f:
-            files.append((info + "/licenses/" + lic, f.read()))
+    for folder, _, names in sorted(os.walk(dist_info)):
+        for entry in sorted(names):
+            path = os.path.join(folder, entry)
+            inside = info + "/" + os.path.relpath(path, dist_info).replace(os.sep, "/")
+            with open(path, "rb") as f:
+                data = f.read()
+            if entry == "WHEEL" and folder == dist_info:
+                data = re.sub(rb"(?m)^Tag: .*$", b"Tag: " + tag.encode(), data)
+            if entry != "RECORD":
+                files.append((inside, data))
 
     def digest(data):
         return "sha256=" + base64.urlsafe_b64encode(hashlib.sha256(data).digest()).rstrip(b"=").decode()
@@ -74,6 +60,6 @@ def main(module, tag, out_dir):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 4:
-        sys.exit("usage: platform_wheel.py MODULE TAG OUT_DIR")
+    if len(sys.argv) != 5:
+        sys.exit("usage: platform_wheel.py MODULE DIST_INFO TAG OUT_DIR")
     main(*sys.argv[1:])
