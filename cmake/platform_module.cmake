@@ -1,7 +1,8 @@
 include(${CMAKE_CURRENT_LIST_DIR}/portable_linux.cmake)
-# One portable module `target` of native/python/module.cpp over the portable core, for the CPython ABI `tag` (e.g.
-# 311) whose headers are in `includes`, named `name` (that platform's extension suffix), linked for the platform
-# being built (the add-on's modules, addon/CMakeLists.txt; the Python package's Windows and macOS ones, python/):
+# One portable module `target` of native/python/ (PROBELIGHTS_MODULE_SOURCES) over the portable core, for the
+# CPython ABI `tag` (e.g. 311) whose headers are in `includes`, named `name` (that platform's extension suffix),
+# linked for the platform being built (the add-on's modules, addon/CMakeLists.txt; the Python package's Windows
+# and macOS ones, python/):
 #   Linux    libstdc++ and libgcc in, glibc's new symbols redirected (glibc_compat.cpp), the rest of Python's API
 #            left to the host Blender;
 #   Windows  zig c++ (clang, libc++ and libunwind in, MinGW-w64's start-up code) against the UCRT, as Blender's
@@ -11,7 +12,7 @@ include(${CMAKE_CURRENT_LIST_DIR}/portable_linux.cmake)
 #            module); zig's linker signs it ad hoc, which arm64 Macs require of any code they load; operator
 #            new and delete defined hidden (macos_operators.cpp), so it exports its init function alone.
 function(probelights_platform_module target tag includes name output_dir)
-  add_library(${target} MODULE ${PROJECT_SOURCE_DIR}/native/python/module.cpp)
+  add_library(${target} MODULE ${PROBELIGHTS_MODULE_SOURCES})
   target_include_directories(${target} SYSTEM PRIVATE ${includes})
   target_link_libraries(${target} PRIVATE probelights_core_portable pybind11::headers)
   target_compile_definitions(${target} PRIVATE PROBELIGHTS_VERSION="${PROJECT_VERSION}")

@@ -1,0 +1,166 @@
+// The module's measuring functions: the evaluator's errors of any lights (evaluate.h), the tradeoff grid
+// (tradeoff.h), SH projection and importance sampling (spherical_harmonics.h, sh_sampler.h).
+#include <pybind11/stl.h>
+
+#include <cmath>
+
+#include "probelights/evaluate.h"
+#include "probelights/placement.h"
+#include "probelights/sh_sampler.h"
+#include "probelights/spherical_harmonics.h"
+#include "probelights/tradeoff.h"
+#include "shell.h"
+
+namespace probelights::shell {
+namespace {
+
+// The errors of any lights against a probe (evaluate.h): a bake's, a user's own, another tool's. Each light
+// is drawn as the bake draws it: a direction, its rgb (sum of L dOmega) and, if given, a sun's cone angle.
+// Bad lights are refused, one line naming the first: they would give NaN errors, not a measurement.
+py::dict evaluateLights(Pixels pixels, const py::dict& lightsDict, const std::string& projection,
+                        const std::string& effects, int evaluatorWidth, const std::string& sunProfile,
+                        const std::string& sunCones, const std::string& nonfinite) {
+  const ImageView view = viewOf(pixels);
+  const auto kind = parseProjection(projection);
+  const NonFinitePolicy policy = parseNonFinitePolicy(nonfinite);
+  const Effects e = parseEffects(effects);
+  if (evaluatorWidth < 1)
+    throw Error("evaluator_width takes a width of at least 1 pixel, got '" + std::to_string(evaluatorWidth) +
+                "'");
+  const EvaluatorOptions options{evaluatorWidth, false, parseSunProfile(sunProfile), parseSunCones(sunCones)};
+  std::vector<Light> lights = exportedLights(lightsDict);
+  if (lights.empty()) throw Error("lights is empty: evaluate takes at least one light");
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    Light& l = lights[i];
+    const std::string which = "light " + std::to_string(i) + " ";
+    const double n = l.direction.length();
+    if (!std::isfinite(n) || n <= 0) throw Error(which + "has no direction (zero or not finite)");
+    l.direction = (1 / n) * l.direction;
+    for (double c : l.rgb)
+      if (!std::isfinite(c)) throw Error(which + "has an rgb that is not finite");
+    if (!std::isfinite(l.angle) || l.angle < 0 || l.angle > kPi)
+      throw Error(which + "has an angle outside [0, pi] radians");
+  }
+  EffectErrors errors;
+  {
+    py::gil_scoped_release release;
+    const Probe probe(view, kind, policy);
+    errors = Evaluator(probe, e, options).evaluate(lights);
+  }
+  py::dict d;
+  if (e & kDiffuse) d["diffuse"] = errors.diffuse;
+  if (e & kShadow) d["shadow"] = errors.shadow;
+  if (e & kGlossy) d["glossy"] = errors.glossy;
+  return d;
+}
+
+// The tradeoff grid (tradeoff.h) in the layout of the CLI's tradeoff JSON (result_layout.h).
+py::dict tradeoffRows(Pixels pixels, const std::string& projection, const std::string& effects,
+                      const std::vector<int>& counts, const std::vector<std::string>& methods, bool refit,
+                      int evaluatorWidth, const std::string& sunProfile, const std::string& sunCones,
+                      const std::string& nonfinite) {
+  const ImageView view = viewOf(pixels);
+  const auto kind = parseProjection(projection);
+  const NonFinitePolicy policy = parseNonFinitePolicy(nonfinite);
+  TradeoffOptions options;
+  options.counts = counts;
+  options.methods.clear();
+  for (const auto& m : methods) options.methods.push_back(parseMethod(m));
+  options.resolutions = {WorkingResolution{}};  // auto
+  options.refit = refit;
+  const Effects e = parseEffects(effects);
+  std::vector<TradeoffRow> rows;
+  std::optional<Probe> probe;
+  {
+    py::gil_scoped_release release;
+    probe.emplace(view, kind, policy);
+    Evaluator evaluator(
+        *probe, e,
+        EvaluatorOptions{evaluatorWidth, refit, parseSunProfile(sunProfile), parseSunCones(sunCones)});
+    rows = tradeoff(*probe, evaluator, options);
+  }
+  py::dict d;
+  DictWriter writer(d);
+  writeTradeoff(writer, {"", *probe, e, rows});
+  return d;
+}
+
+// SH coefficients (bands^2 x 3) of the radiance, or of the irradiance.
+py::array_t<double> shProject(Pixels pixels, int bands, const std::string& projection,
+                              const std::string& window, bool irradiance, const std::string& nonfinite) {
+  const ImageView view = viewOf(pixels);
+  const auto kind = parseProjection(projection);
+  const ShWindow w = parseShWindow(window);
+  const NonFinitePolicy policy = parseNonFinitePolicy(nonfinite);
+  ShCoefficients sh;
+  {
+    py::gil_scoped_release release;
+    Probe probe(view, kind, policy);
+    sh = projectProbe(probe, bands);
+    applyWindow(sh, w);
+    if (irradiance) sh = irradianceCoefficients(sh);
+  }
+  py::array_t<double> out({static_cast<py::ssize_t>(sh.c.size()), py::ssize_t{3}});
+  auto m = out.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < sh.c.size(); ++i)
+    for (int k = 0; k < 3; ++k) m(i, k) = sh.c[i][k];
+  return out;
+}
+
+// Directions (N, 3) and pdfs (N,) from the SH importance sampler of the probe's luminance; u (N, 2) in
+// [0,1)^2 or, if not given, `samples` points from a seeded generator.
+py::tuple shSample(Pixels pixels, int bands, double epsilon, int samples, int depth, std::uint64_t seed,
+                   const std::string& projection, const std::string& nonfinite) {
+  const ImageView view = viewOf(pixels);
+  const auto kind = parseProjection(projection);
+  const NonFinitePolicy policy = parseNonFinitePolicy(nonfinite);
+  std::vector<ShSampler::Sample> drawn;
+  {
+    py::gil_scoped_release release;
+    Probe probe(view, kind, policy);
+    drawn =
+        ShSampler(bands, projectProbe(probe, bands).luminance(), epsilon, depth).sampleSeeded(samples, seed);
+  }
+  py::array_t<double> dirs({static_cast<py::ssize_t>(drawn.size()), py::ssize_t{3}}),
+      pdfs(static_cast<py::ssize_t>(drawn.size()));
+  auto d = dirs.mutable_unchecked<2>();
+  auto p = pdfs.mutable_unchecked<1>();
+  for (std::size_t i = 0; i < drawn.size(); ++i) {
+    const auto& s = drawn[i];
+    d(i, 0) = s.direction.x, d(i, 1) = s.direction.y, d(i, 2) = s.direction.z, p(i) = s.pdf;
+  }
+  return py::make_tuple(dirs, pdfs);
+}
+
+}  // namespace
+
+void defineAnalysis(py::module_& m) {
+  m.def(
+      "tradeoff", &tradeoffRows, py::arg("pixels"), py::kw_only(), py::arg("projection") = "latlong",
+      py::arg("effects") = "diffuse,shadow", py::arg("counts") = std::vector<int>{4, 8, 16, 32, 64, 128, 256},
+      py::arg("methods") = methodNames(), py::arg("refit") = true, py::arg("evaluator_width") = 2048,
+      py::arg("sun_profile") = "cone", py::arg("sun_cones") = "free", py::arg("nonfinite") = "error",
+      "What accuracy costs in time, in the layout of the CLI's tradeoff JSON: source, effects, error, and "
+      "rows: a dict of columns (method, lights, made, resolution, refit, bake_ms, each effect's error), one "
+      "entry per (method, count, refit).");
+  m.def("evaluate", &evaluateLights, py::arg("pixels"), py::arg("lights"), py::kw_only(),
+        py::arg("projection") = "latlong", py::arg("effects") = "diffuse,shadow",
+        py::arg("evaluator_width") = 2048, py::arg("sun_profile") = "cone", py::arg("sun_cones") = "free",
+        py::arg("nonfinite") = "error",
+        "The errors (relative RMS of luminance, evaluate.h) of any lights against the probe on `effects`: "
+        "a dict {effect: error}. lights: a dict of arrays as a bake's result has them, direction (N,3), "
+        "rgb (N,3) (sum of L dOmega) and angle (N,), a sun's full cone angle in radians (0 or absent: "
+        "points). A bake's own lights give its evaluation's errors.");
+  m.def(
+      "sh_project", &shProject, py::arg("pixels"), py::kw_only(), py::arg("bands"),
+      py::arg("projection") = "latlong", py::arg("window") = "none", py::arg("irradiance") = false,
+      py::arg("nonfinite") = "error",
+      "Real SH coefficients (bands^2 x 3; Sloan order, orthonormal, Condon-Shortley phase, theta from +Z).");
+  m.def(
+      "sh_sample", &shSample, py::arg("pixels"), py::kw_only(), py::arg("bands"), py::arg("epsilon") = 0.01,
+      py::arg("samples") = 1024, py::arg("depth") = 8, py::arg("seed") = 1, py::arg("projection") = "latlong",
+      py::arg("nonfinite") = "error",
+      "(directions (N,3), pdf (N,)) from the SH importance sampler of the probe's luminance (Berger 2011).");
+}
+
+}  // namespace probelights::shell
