@@ -1,4 +1,4 @@
-// Four doubles at a time for the per-pixel loops (pixel_sums.cpp, moment_table.cpp): one vector of four
+// Four doubles at a time for the per-pixel loops (pixel_sums.cpp, moment_rows.cpp): one vector of four
 // doubles in an AVX2 clone of a loop, two SSE2 pairs in its portable build (GCC splits a four-double vector
 // without AVX through the stack: the CLI's 8K grid took 2.4x as long as with two pairs). A loop is written
 // once as a template on the lane type V (D4 or Pairs) with the operators and Lanes<V> below; the same

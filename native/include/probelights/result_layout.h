@@ -1,5 +1,5 @@
 // One layout of a bake's result for every shell: the CLI's JSON (native/cli/json_output.cpp) and the Python
-// module's dict (native/python/module.cpp) are both written by writeBake() through a ResultWriter, so they
+// module's dict (native/python/shell.cpp) are both written by writeBake() through a ResultWriter, so they
 // have the same keys, nested the same way (tests/python/test_module.py checks it). The layout (README,
 // "JSON"):
 //   source {path, width, height, projection, negative_samples, non_finite_samples}
