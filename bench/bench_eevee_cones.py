@@ -1,6 +1,6 @@
 """docs/eevee.md's table of the suns' cones: EEVEE and Cycles with 16 lamps (Lamps take: All of the light) whose
 fitted cones may cross the horizon (sun_cones "free", the add-on's bake in Cycles) or not ("above-horizon", its bake
-in EEVEE: conversion.sun_cones), each against Cycles lit by the world. Same scene and measure as
+in EEVEE: blender_caps.sun_cones), each against Cycles lit by the world. Same scene and measure as
 bench_eevee_residual.py (the diffuse sphere over a plane, 160x120, direct light only, EEVEE 32 samples, Cycles 256).
 
     tests/blender/run.sh --gl ~/.cache/probelights/bpy-4.5.15/bin/python bench/bench_eevee_cones.py \\

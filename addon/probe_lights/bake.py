@@ -14,7 +14,7 @@ import bpy
 import numpy as np
 
 from . import cycles_settings, eevee_settings, light_kinds, native, render_cost
-from .conversion import preset, sun_cones, sun_profile
+from .blender_caps import preset, sun_cones, sun_profile
 from .errors import ProbeError
 from .light_objects import (baked_worlds, make_lights, remove_collection_if_empty, remove_lights, sun_height,
                             world_collection)
@@ -25,7 +25,7 @@ from .world_mix import insert_mix, remove_mix, residual_world
 
 RENDER_WIDTH = 1024  # lat-long width a world without a readable image is rendered at
 IMAGE_KEY = "probe_lights_image"  # on a baked world: the image it was baked from (a re-bake is suggested if it changes)
-CONES_KEY = "probe_lights_cones_cross"  # on a baked world: a sun's cone crosses the horizon (conversion.sun_cones)
+CONES_KEY = "probe_lights_cones_cross"  # on a baked world: a sun's cone crosses the horizon (blender_caps.sun_cones)
 LUM = np.array([0.2126, 0.7152, 0.0722])
 
 
@@ -181,7 +181,7 @@ def _crosses_horizon(lamp):
 
 def eevee_cones_note(scene):
     """What the panel says when the scene renders in EEVEE with suns baked for another engine whose cones cross the
-    horizon (EEVEE renders them darker: conversion.sun_cones), else ''."""
+    horizon (EEVEE renders them darker: blender_caps.sun_cones), else ''."""
     world = scene.world
     if world is None or not world.get(CONES_KEY) or sun_cones(scene.render.engine, bpy.app.version) == "free":
         return ""

@@ -15,6 +15,11 @@ import math
 
 import numpy as np
 
+try:
+    from .blender_caps import NORMALIZED_SUN_SINCE, sun_profile
+except ImportError:  # imported on its own, as the bpy-free tests do
+    from blender_caps import NORMALIZED_SUN_SINCE, sun_profile
+
 
 def rotation_to_direction(d):
     """A rotation matrix (columns = the object's x, y, z axes in the world) whose local +Z points along d.
@@ -40,32 +45,6 @@ def colour_and_scale(rgb):
 
 MAX_SUN_ANGLE = math.radians(180.0)
 MAX_DISC_SUN_ANGLE = math.radians(178.0)  # a 3.x sun is a disc of radius tan(angle / 2): kept finite (the core too)
-
-
-def sun_cones(engine, blender_version):
-    """How wide the suns' cones may be for a bake in that engine (the core's sun_cones, cone.h). EEVEE (4.2+)
-    darkens a whole sun by the part of its cone below the floor's horizon, so a bake in EEVEE keeps every cone
-    above it: 16 lamps then render within 0.2-3.5 % of Cycles' world on the 15 probes in 4.5.15, against 0.3-7.4 %
-    with free cones; in Cycles the free cones are closer (0.2-1.6 % against 0.2-2.0 %; docs/eevee.md,
-    bench/bench_eevee_cones.py), so a bake in any other engine leaves them free."""
-    eevee_next = tuple(blender_version) >= (4, 2, 0) and engine in ("BLENDER_EEVEE_NEXT", "BLENDER_EEVEE")
-    return "above-horizon" if eevee_next else "free"
-
-
-def preset(engine, blender_version):
-    """The core's recipe for the add-on's bake in that engine (request.cpp: presets): its suns' cones as
-    sun_cones says, the rest the same."""
-    return "blender-eevee" if sun_cones(engine, blender_version) == "above-horizon" else "blender"
-
-
-NORMALIZED_SUN_SINCE = (4, 0, 0)  # measured: 3.4 disc; 4.5, 5.0, 5.2 normalized (3.5 to 4.4 not measured)
-
-
-def sun_profile(blender_version):
-    """How that Blender's Cycles spreads a sun's light over its angle, in the core's words (cone.h): a uniform cone
-    from 4.0 on; before, a disc of radius tan(angle / 2) at unit distance (radiance 1 / cos^3 of the angle from the
-    axis, which the renders of tests/blender/test_estimate.py confirm: the estimate and 3.4's render agree)."""
-    return "cone" if tuple(blender_version) >= NORMALIZED_SUN_SINCE else "disc"
 
 
 def sun_normal_irradiance(angle, blender_version):

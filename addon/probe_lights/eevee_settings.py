@@ -17,6 +17,7 @@ done; Restore world undoes it.
 
 import bpy
 
+from . import blender_caps
 from .light_objects import baked_lights, sun_height
 from .world_mix import has_residual
 from .remembered import put_back, set_remembering
@@ -39,7 +40,7 @@ MAX_POOL_MB = 1024  # Blender 5.2 offers 2 GB, which failed here ("Could not all
 
 def eevee_next(scene):
     """Whether the scene renders in EEVEE Next (Blender 4.2 and newer), which keeps every shadow in one pool."""
-    return bpy.app.version >= (4, 2, 0) and scene.render.engine in ("BLENDER_EEVEE_NEXT", "BLENDER_EEVEE")
+    return blender_caps.eevee_next(scene.render.engine, bpy.app.version)
 
 
 def _pages(load, scale):
@@ -183,7 +184,7 @@ def _after_load(*_):
 
 
 def register():
-    if bpy.app.version < (4, 2, 0):
+    if not blender_caps.has_eevee_next(bpy.app.version):
         return
     for handlers, f in ((bpy.app.handlers.render_pre, _before_render), (bpy.app.handlers.load_post, _after_load)):
         if f not in handlers:

@@ -15,6 +15,7 @@ import numpy as np
 from mathutils import Matrix, Vector
 
 from . import light_kinds, world_mix
+from .blender_caps import is_eevee
 from .conversion import point_parameters, sun_parameters
 
 COLLECTION_TAG = "probe_lights_collection"
@@ -26,7 +27,6 @@ SUN_SCALE = 0.1  # a sun's object scale: its light does not change, its viewport
 NOT_SCENERY = {"LIGHT", "CAMERA", "EMPTY", "SPEAKER", "LIGHT_PROBE", "LIGHTPROBE"}
 RAYS_KEY = "probe_lights_rays"  # on a lamp: the rays it lights in Cycles, its bake's split ("diffuse,volume_scatter")
 LAMP_RAYS = ("diffuse", "glossy", "transmission", "volume_scatter")
-EEVEE_ENGINES = {"BLENDER_EEVEE", "BLENDER_EEVEE_NEXT"}
 
 
 def world_collection(world):
@@ -239,7 +239,7 @@ def make_lights(scene, world, baked, source, light_type=light_kinds.DEFAULT, dis
         # again (a glass sphere 8-12 % too bright; world_mix.py)
         rays = [r for r, lit in zip(LAMP_RAYS, (lights_diffuse, lights_glossy, lights_glossy, lights_diffuse)) if lit]
         obj[RAYS_KEY] = ",".join(rays)
-        _show_to(obj, LAMP_RAYS if scene.render.engine in EEVEE_ENGINES else rays)
+        _show_to(obj, LAMP_RAYS if is_eevee(scene.render.engine) else rays)
         # Multiple importance sampling only when the lamps light reflections, in a Cycles with a light tree. With MIS
         # a lamp's light on a many-closure BSDF (Principled) is shared between the lamp's own samples, which Cycles
         # evaluates closure by closure against the lamp's visibility (the glossy closures left out), and rays
@@ -331,7 +331,7 @@ def follow_engine(scene):
     lamp's ray visibility (a Glossy BSDF ball lit by 16 lamps of the default split rendered black; bpy 4.5.15 and
     5.3.0), EEVEE Legacy does not. A lamp whose visibility is neither of the two (the user's own) is left as it
     is. Returns how many lamps changed."""
-    eevee = scene.render.engine in EEVEE_ENGINES
+    eevee = is_eevee(scene.render.engine)
     changed = 0
     lamps = (o for c in scene.collection.children if c.get(COLLECTION_TAG) for o in c.objects)
     for obj in lamps:  # the baked collections only: this runs after every depsgraph update

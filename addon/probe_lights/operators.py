@@ -7,7 +7,7 @@ import bpy
 
 from . import cycles_settings, eevee_settings, native, probe_volumes
 from .bake import RENDER_WIDTH, bake_world, needs_render, report_lines, restore_world, world_probe
-from .conversion import sun_cones, sun_profile
+from .blender_caps import has_eevee_next, sun_cones, sun_profile
 from .errors import ProbeError
 from .properties import SETTING_NAMES, bake_settings, cut_method
 from .world_image import WorldRender
@@ -287,7 +287,7 @@ class PROBE_LIGHTS_OT_bake_light_probes(bpy.types.Operator):
 
     @classmethod
     def poll(cls, context):
-        return (bpy.app.version >= (4, 2, 0) and context.scene is not None  # EEVEE Next's bake
+        return (has_eevee_next(bpy.app.version) and context.scene is not None  # EEVEE Next's bake
                 and bool(probe_volumes.volume_probes(context.scene)))
 
     def execute(self, context):

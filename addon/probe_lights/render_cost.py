@@ -10,6 +10,11 @@ past the sweet spot when no probe renders measurably closer with more (the bench
 import json
 import os
 
+try:
+    from .blender_caps import has_light_tree
+except ImportError:  # imported on its own, as the bpy-free tests do
+    from blender_caps import has_light_tree
+
 
 def _load(path=os.path.join(os.path.dirname(os.path.abspath(__file__)), "render_cost.json")):
     """render_cost.json, as bench/bench_render_counts.py writes it, as
@@ -66,5 +71,5 @@ def count_note(count, blender_version):
         return ""
     version = measured_version(blender_version)
     # Without a light tree (3.x) more lamps make a render noisier; with one (4.0+) slower.
-    cost = "noisier" if version < (4, 0, 0) else "slower"
+    cost = "slower" if has_light_tree(version) else "noisier"
     return "More than %d suns: %s renders, no closer in Cycles %d.%d" % (best, cost, version[0], version[1])

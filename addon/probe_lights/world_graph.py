@@ -15,6 +15,11 @@ mixes of backgrounds, colour ramps on the image, a plain colour, ...) is rendere
 from dataclasses import dataclass, field
 import math
 
+try:
+    from .blender_caps import world_always_uses_nodes
+except ImportError:  # imported on its own, as the bpy-free tests do
+    from blender_caps import world_always_uses_nodes
+
 MIX_TAG = "probe_lights_mix"  # custom property on the Mix Shader the add-on inserts (see world_mix.py)
 
 
@@ -193,7 +198,7 @@ def find_probe(world, blender_version=(4, 5, 0)):
 def uses_nodes(world, blender_version):
     """Whether Blender renders the world through its node tree. From 5.0 on it always does (World.use_nodes is
     deprecated, and measured: Cycles 5.0 renders a world with use_nodes False through its Background node)."""
-    if tuple(blender_version) >= (5, 0, 0):
+    if world_always_uses_nodes(blender_version):
         return world.node_tree is not None
     return bool(world.use_nodes) and world.node_tree is not None
 

@@ -5,7 +5,7 @@ one and five of Blender's studio lights) and N = 8, 16, 64, and compared with th
 (its pixels integrated; Cycles' render of the world is checked to be that truth on the bundled probe). The
 rendered relative RMS difference, less the renders' own noise (two seeds of each), must agree with the estimated
 shadow error within a third of the rendered figure or 0.3 points, whichever is larger (issue 9). The estimate
-models each Blender's sun (4.0+: a uniform cone; 3.x: a disc of radius tan(angle / 2), conversion.sun_profile).
+models each Blender's sun (4.0+: a uniform cone; 3.x: a disc of radius tan(angle / 2), blender_caps.sun_profile).
 
     tests/blender/run.sh ~/.cache/probelights/bpy-4.5.15/bin/python tests/blender/test_estimate.py \\
         build/probe_lights-0.1.0-linux_x64.zip ../shared

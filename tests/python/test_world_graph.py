@@ -5,6 +5,7 @@ import math
 import numpy as np
 import pytest
 
+import blender_caps
 import conversion
 import world_graph as wg
 
@@ -205,14 +206,14 @@ def test_sun_parameters_point_the_lamp_and_keep_its_irradiance():
     assert conversion.sun_parameters(d, (2, 1, 0.5), 0.0, (5, 2, 3))["angle"] == 0.0
     assert conversion.sun_parameters(d, (2, 1, 0.5), 4.0, (5, 2, 3))["angle"] == pytest.approx(math.pi)
     assert conversion.sun_parameters(d, (2, 1, 0.5), 4.0, (3, 4, 1))["angle"] == pytest.approx(math.radians(178))
-    assert conversion.sun_profile((3, 4, 1)) == "disc" and conversion.sun_profile((4, 5, 0)) == "cone"
+    assert blender_caps.sun_profile((3, 4, 1)) == "disc" and blender_caps.sun_profile((4, 5, 0)) == "cone"
     # Cones kept above the horizon for EEVEE Next (4.2+) alone: EEVEE Legacy (3.x) and Cycles keep them free.
-    assert conversion.sun_cones("BLENDER_EEVEE_NEXT", (4, 5, 0)) == "above-horizon"
-    assert conversion.sun_cones("BLENDER_EEVEE", (5, 3, 0)) == "above-horizon"
-    assert conversion.sun_cones("BLENDER_EEVEE", (3, 4, 1)) == "free"
-    assert conversion.sun_cones("CYCLES", (5, 3, 0)) == "free"
-    assert conversion.preset("BLENDER_EEVEE", (5, 3, 0)) == "blender-eevee"
-    assert conversion.preset("BLENDER_EEVEE", (3, 4, 1)) == conversion.preset("CYCLES", (5, 3, 0)) == "blender"
+    assert blender_caps.sun_cones("BLENDER_EEVEE_NEXT", (4, 5, 0)) == "above-horizon"
+    assert blender_caps.sun_cones("BLENDER_EEVEE", (5, 3, 0)) == "above-horizon"
+    assert blender_caps.sun_cones("BLENDER_EEVEE", (3, 4, 1)) == "free"
+    assert blender_caps.sun_cones("CYCLES", (5, 3, 0)) == "free"
+    assert blender_caps.preset("BLENDER_EEVEE", (5, 3, 0)) == "blender-eevee"
+    assert blender_caps.preset("BLENDER_EEVEE", (3, 4, 1)) == blender_caps.preset("CYCLES", (5, 3, 0)) == "blender"
     straight_up = conversion.rotation_to_direction((0, 0, 1))
     assert np.allclose(straight_up[:, 2], (0, 0, 1))
 
