@@ -7,7 +7,7 @@ import bpy
 
 from . import cycles_settings, eevee_settings, native, probe_volumes
 from .bake import RENDER_WIDTH, bake_world, needs_render, report_lines, restore_world, world_probe
-from .blender_caps import has_eevee_next, sun_cones, sun_profile
+from .blender_caps import has_eevee_next, preset, sun_profile
 from .errors import ProbeError
 from .properties import SETTING_NAMES, bake_settings, cut_method
 from .world_image import WorldRender
@@ -123,10 +123,10 @@ class PROBE_LIGHTS_OT_tradeoff(bpy.types.Operator):
         """Measures the next count; True when all are done."""
         n = TRADEOFF_COUNTS[self._done]
         pixels, projection = self._probe[0], self._probe[1]
-        rows = native.tradeoff(pixels, projection=projection, effects="diffuse,shadow", counts=[n],
-                               methods=[self._method], refit=True, evaluator_width=512,
-                               sun_profile=sun_profile(bpy.app.version),
-                               sun_cones=sun_cones(context.scene.render.engine, bpy.app.version))["rows"]
+        # Each row made and judged as the bake makes them (the core's preset for this engine), at one count.
+        rows = native.tradeoff(pixels, projection=projection, counts=[n], methods=[self._method],
+                               resolutions=["auto"], preset=preset(context.scene.render.engine, bpy.app.version),
+                               sun_profile=sun_profile(bpy.app.version))["rows"]
         for i in range(len(rows["lights"])):
             row = context.scene.probe_lights.tradeoff.add()
             row.lights, row.refit, row.bake_ms = int(rows["lights"][i]), bool(rows["refit"][i]), rows["bake_ms"][i]

@@ -179,31 +179,12 @@ void printSummary(const BakeArgs& a, const Probe& probe, const EvaluatedBake& ev
 }  // namespace
 
 std::string bakeOptionsUsage() {
-  // "  --name VALUES" in a column of 36, then what it does and its default, wrapped at 110 columns.
   std::string out;
   const BakeRequest defaults;
-  for (const RequestOption& o : requestOptions()) {
-    std::string head =
-        "  " + o.cliName() + (o.name == "lights" ? ", -n" : "") + (o.isSwitch() ? "" : " " + o.values);
-    std::string text = o.help;
-    if (!o.isSwitch()) text += " (default " + o.get(defaults) + ")";
-    if (head.size() >= 36) out += head + "\n", head.clear();
-    head.resize(36, ' ');
-    std::string line = head;
-    std::size_t at = 0;
-    while (at < text.size()) {
-      std::size_t take = std::min<std::size_t>(110 - 36, text.size() - at);
-      if (at + take < text.size()) {
-        const std::size_t space = text.rfind(' ', at + take);
-        if (space != std::string::npos && space > at) take = space - at;
-      }
-      line += text.substr(at, take);
-      out += line + "\n";
-      at += take;
-      while (at < text.size() && text[at] == ' ') ++at;
-      line.assign(36, ' ');
-    }
-  }
+  for (const RequestOption& o : requestOptions())
+    out += usageLines(
+        "  " + o.cliName() + (o.name == "lights" ? ", -n" : "") + (o.isSwitch() ? "" : " " + o.values),
+        o.help + (o.isSwitch() ? "" : " (default " + o.get(defaults) + ")"));
   return out;
 }
 

@@ -22,8 +22,7 @@ const char* kUsage =
        probelights bake PROBE... --out-dir DIR [options]   a whole library, one JSON per probe
        probelights sh PROBE --bands B [--irradiance] [--window none|hanning|lanczos] [-o sh.json]
        probelights sample PROBE --bands B --epsilon E --samples N [--depth K] [--seed S] [-o samples.json]
-       probelights tradeoff PROBE [--effects diffuse,shadow,glossy] [--counts 1,2,4,...] [--methods ...]
-                              [--no-refit] [-o tradeoff.json] [--plot tradeoff.png]
+       probelights tradeoff PROBE [options (tradeoff)] [-o tradeoff.json] [--plot tradeoff.png]
 
 PROBE is any image OpenImageIO reads. sh: real SH coefficients (Sloan order, orthonormal, Condon-Shortley
 phase, theta from +Z) of the radiance, or with --irradiance of the irradiance. sample: directions and pdfs
@@ -58,9 +57,14 @@ const char* kUsageOwn =
   --previews                        with --out-dir: a preview PNG per probe too
   -q, --quiet                       no summary on standard output
   (sh, sample: --projection and --nonfinite as above; JSON goes to -o FILE or standard output)
+
+options (tradeoff): the grid, and how each row is made and judged, by the bake's options
 )";
 
-std::string usage() { return std::string(kUsage) + bakeOptionsUsage() + kUsageOwn; }
+std::string usage() {
+  return std::string(kUsage) + bakeOptionsUsage() + kUsageOwn + tradeoffOptionsUsage() +
+         "  (and --projection, -o, --plot)\n";
+}
 
 }  // namespace
 

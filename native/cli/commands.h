@@ -12,5 +12,6 @@ int bakeCommand(const std::vector<std::string>& argv);      // bake_command.cpp
 int shCommand(const std::vector<std::string>& argv);        // sh_commands.cpp
 int sampleCommand(const std::vector<std::string>& argv);    // sh_commands.cpp
 int tradeoffCommand(const std::vector<std::string>& argv);  // tradeoff_command.cpp
+std::string tradeoffOptionsUsage();                         // its options, from tradeoff.h's table
 
 }  // namespace probelights::cli

@@ -107,6 +107,27 @@ std::vector<std::string> splitList(const std::string& text) {
   return items;
 }
 
+std::string usageLines(std::string head, const std::string& text) {
+  std::string out;
+  if (head.size() >= 36) out += head + "\n", head.clear();
+  head.resize(36, ' ');
+  std::string line = head;
+  std::size_t at = 0;
+  while (at < text.size()) {
+    std::size_t take = std::min<std::size_t>(110 - 36, text.size() - at);
+    if (at + take < text.size()) {
+      const std::size_t space = text.rfind(' ', at + take);
+      if (space != std::string::npos && space > at) take = space - at;
+    }
+    line += text.substr(at, take);
+    out += line + "\n";
+    at += take;
+    while (at < text.size() && text[at] == ' ') ++at;
+    line.assign(36, ' ');
+  }
+  return out;
+}
+
 std::string dumpJson(const nlohmann::json& j, int indent) {
   return j.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }

@@ -45,6 +45,10 @@ inline Option flag(std::vector<std::string> names, std::function<void()> set) {
 // Unknown options are a UsageError.
 std::vector<std::string> parseOptions(const std::vector<std::string>& argv, const std::vector<Option>& table);
 
+// One option of a usage text: `head` ("  --name VALUES") in a column of 36, then `text` wrapped at 110
+// columns.
+std::string usageLines(std::string head, const std::string& text);
+
 // The one probe a command takes, from the positional arguments.
 std::string oneProbe(const std::vector<std::string>& positional, const std::string& command);
 

@@ -7,43 +7,50 @@
 #include "options.h"
 #include "probelights/evaluate.h"
 #include "probelights/image_file.h"
-#include "probelights/stopwatch.h"
 #include "probelights/tradeoff.h"
 #include "tradeoff_plot.h"
 #include "write_whole.h"
 
 namespace probelights::cli {
 
+std::string tradeoffOptionsUsage() {
+  std::string out;
+  const TradeoffRequest defaults;
+  for (const TradeoffOption& o : tradeoffOptions())
+    out += usageLines("  " + o.cliName() + (o.isSwitch() ? "" : " " + o.values),
+                      o.help + (o.isSwitch() ? "" : " (default " + o.get(defaults) + ")"));
+  return out + usageLines("  --no-refit", "no refit rows");
+}
+
 int tradeoffCommand(const std::vector<std::string>& argv) {
   std::string output, plot;
-  ProbeOptions probeOptions;
-  TradeoffOptions options;
-  Effects effects = kDiffuse | kShadow;
-  std::vector<Option> table{
-      {{"--effects"}, [&](const std::string& v) { effects = parseEffects(v); }},
-      {{"--counts"},
-       [&](const std::string& v) {
-         options.counts.clear();
-         for (const auto& c : splitList(v)) options.counts.push_back(parseCount("--counts", c));
-       }},
-      {{"--methods"},
-       [&](const std::string& v) {
-         options.methods.clear();
-         for (const auto& m : splitList(v)) options.methods.push_back(parseMethod(m));
-       }},
-      flag({"--no-refit"}, [&] { options.refit = false; }),
-      {{"-o", "--output"}, [&](const std::string& v) { output = nonEmpty("-o", v); }},
-      {{"--plot"}, [&](const std::string& v) { plot = nonEmpty("--plot", v); }},
-  };
-  addProbeOptions(table, probeOptions);
+  // The tradeoff's options, from the table the module shares (tradeoff.h), applied after the command line is
+  // read in the table's order (a preset first, the options that change it after), then the command's own.
+  TradeoffRequest request;
+  std::vector<std::pair<const TradeoffOption*, std::string>> given;
+  std::vector<Option> table;
+  for (const TradeoffOption& o : tradeoffOptions()) {
+    if (o.isSwitch())
+      table.push_back(flag({o.cliName()}, [&given, &o] { given.emplace_back(&o, "true"); }));
+    else
+      table.push_back({{o.cliName()}, [&given, &o](const std::string& v) { given.emplace_back(&o, v); }});
+  }
+  table.push_back(flag({"--no-refit"}, [&] { given.emplace_back(&tradeoffOption("refit"), "false"); }));
+  table.push_back({{"--projection"}, [&](const std::string& v) {
+                     request.judging.probe.projection = parseProjectionChoice(v);
+                   }});
+  table.push_back({{"-o", "--output"}, [&](const std::string& v) { output = nonEmpty("-o", v); }});
+  table.push_back({{"--plot"}, [&](const std::string& v) { plot = nonEmpty("--plot", v); }});
   const std::string probePath = oneProbe(parseOptions(argv, table), "tradeoff");
+  for (const TradeoffOption& o : tradeoffOptions())
+    for (const auto& [option, value] : given)
+      if (option == &o) o.set(request, o.cliName(), value);
   refuseOverwritingProbe(probePath, {output, plot});
 
-  Stopwatch truth;
-  Probe probe = loadProbe(probePath, probeOptions);
-  Evaluator evaluator(probe, effects, EvaluatorOptions{2048, options.refit});
-  const double truthMs = truth.ms();
-  auto rows = tradeoff(probe, evaluator, options);
+  Probe probe = loadProbe(probePath, request.judging.probe);
+  const Effects effects = request.judging.accuracy.effects;
+  double truthMs = 0;
+  auto rows = tradeoff(probe, request, &truthMs);
   std::printf("probe %s %dx%d; effects %s; ground truth %.0f ms; error = relative RMS of luminance\n\n",
               probePath.c_str(), probe.width(), probe.height(), effectsToString(effects).c_str(), truthMs);
   std::printf("%-11s %6s %6s %5s %10s", "method", "lights", "res", "refit", "bake ms");

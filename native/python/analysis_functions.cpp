@@ -54,34 +54,22 @@ py::dict evaluateLights(Pixels pixels, const py::dict& lightsDict, const std::st
   return d;
 }
 
-// The tradeoff grid (tradeoff.h) in the layout of the CLI's tradeoff JSON (result_layout.h).
-py::dict tradeoffRows(Pixels pixels, const std::string& projection, const std::string& effects,
-                      const std::vector<int>& counts, const std::vector<std::string>& methods, bool refit,
-                      int evaluatorWidth, const std::string& sunProfile, const std::string& sunCones,
-                      const std::string& nonfinite) {
+// The tradeoff grid (tradeoff.h) in the layout of the CLI's tradeoff JSON (result_layout.h), its keywords
+// the tradeoff table's options (the CLI's tradeoff options).
+py::dict tradeoffRows(Pixels pixels, const std::string& projection, const py::kwargs& options) {
   const ImageView view = viewOf(pixels);
   const auto kind = parseProjection(projection);
-  const NonFinitePolicy policy = parseNonFinitePolicy(nonfinite);
-  TradeoffOptions options;
-  options.counts = counts;
-  options.methods.clear();
-  for (const auto& m : methods) options.methods.push_back(parseMethod(m));
-  options.resolutions = {WorkingResolution{}};  // auto
-  options.refit = refit;
-  const Effects e = parseEffects(effects);
+  const TradeoffRequest request = fromKeywords(tradeoffOptions(), options);
   std::vector<TradeoffRow> rows;
   std::optional<Probe> probe;
   {
     py::gil_scoped_release release;
-    probe.emplace(view, kind, policy);
-    Evaluator evaluator(
-        *probe, e,
-        EvaluatorOptions{evaluatorWidth, refit, parseSunProfile(sunProfile), parseSunCones(sunCones)});
-    rows = tradeoff(*probe, evaluator, options);
+    probe.emplace(view, kind, request.judging.probe.nonFinite);
+    rows = tradeoff(*probe, request);
   }
   py::dict d;
   DictWriter writer(d);
-  writeTradeoff(writer, {"", *probe, e, rows});
+  writeTradeoff(writer, {"", *probe, request.judging.accuracy.effects, rows});
   return d;
 }
 
@@ -135,18 +123,18 @@ py::tuple shSample(Pixels pixels, int bands, double epsilon, int samples, int de
 }  // namespace
 
 void defineAnalysis(py::module_& m) {
-  m.def(
-      "tradeoff", &tradeoffRows, py::arg("pixels"), py::kw_only(), py::arg("projection") = "latlong",
-      py::arg("effects") = "diffuse,shadow", py::arg("counts") = std::vector<int>{4, 8, 16, 32, 64, 128, 256},
-      py::arg("methods") = methodNames(), py::arg("refit") = true, py::arg("evaluator_width") = 2048,
-      py::arg("sun_profile") = "cone", py::arg("sun_cones") = "free", py::arg("nonfinite") = "error",
-      "What accuracy costs in time, in the layout of the CLI's tradeoff JSON: source, effects, error, and "
-      "rows: a dict of columns (method, lights, made, resolution, refit, bake_ms, each effect's error), one "
-      "entry per (method, count, refit).");
+  static const std::string tradeoffDoc =
+      "tradeoff(pixels, *, projection='latlong', **options): what accuracy costs in time, in the layout of "
+      "the CLI's tradeoff JSON: source, effects, error, and rows: a dict of columns (method, lights, made, "
+      "resolution, refit, bake_ms, each effect's error), one entry per (method, count, resolution, refit). "
+      "preset= makes each row as that recipe's bake would." +
+      optionsDoc(tradeoffOptions());
+  m.def("tradeoff", &tradeoffRows, py::arg("pixels"), py::kw_only(), py::arg("projection") = "latlong",
+        tradeoffDoc.c_str());
   m.def("evaluate", &evaluateLights, py::arg("pixels"), py::arg("lights"), py::kw_only(),
         py::arg("projection") = "latlong", py::arg("effects") = "diffuse,shadow",
-        py::arg("evaluator_width") = 2048, py::arg("sun_profile") = "cone", py::arg("sun_cones") = "free",
-        py::arg("nonfinite") = "error",
+        py::arg("evaluator_width") = EvaluatorOptions{}.maxWidth, py::arg("sun_profile") = "cone",
+        py::arg("sun_cones") = "free", py::arg("nonfinite") = "error",
         "The errors (relative RMS of luminance, evaluate.h) of any lights against the probe on `effects`: "
         "a dict {effect: error}. lights: a dict of arrays as a bake's result has them, direction (N,3), "
         "rgb (N,3) (sum of L dOmega) and angle (N,), a sun's full cone angle in radians (0 or absent: "

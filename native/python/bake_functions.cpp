@@ -19,42 +19,10 @@ int run(const std::vector<std::string>& args);  // native/cli/command_line.cpp
 namespace probelights::shell {
 namespace {
 
-// A keyword's value as its option's text (request.h): a switch from a bool, a number as Python writes it (its
-// repr reads back as the same double), a word as it is.
-std::string optionText(const std::string& name, const py::handle& value) {
-  if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "true" : "false";
-  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
-  if (py::hasattr(value, "__index__")) return py::str(py::int_(py::reinterpret_borrow<py::object>(value)));
-  if (py::isinstance<py::float_>(value) || py::hasattr(value, "__float__"))
-    return py::repr(py::float_(py::reinterpret_borrow<py::object>(value)));
-  throw Error(name + " takes " +
-              (requestOption(name).isSwitch() ? "True or False" : requestOption(name).values) + ", got a " +
-              py::str(py::type::handle_of(value).attr("__name__")).cast<std::string>());
-}
-
-// The request the keywords ask for, every other option at its default (request.h: one table for the module
-// and the CLI). Options are applied in the table's order, whatever the keywords' order.
-BakeRequest requestFrom(const py::kwargs& kwargs) {
-  for (const auto& item : kwargs) {
-    const std::string key = item.first.cast<std::string>();
-    bool known = false;
-    for (const RequestOption& o : requestOptions()) known = known || o.name == key;
-    if (!known) {
-      std::string names;
-      for (const RequestOption& o : requestOptions()) names += (names.empty() ? "" : ", ") + o.name;
-      throw Error("unknown option '" + key + "': the options are projection, " + names);
-    }
-  }
-  BakeRequest request;
-  for (const RequestOption& o : requestOptions())
-    if (kwargs.contains(o.name.c_str())) o.set(request, o.name, optionText(o.name, kwargs[o.name.c_str()]));
-  return request;
-}
-
 py::dict bakePixels(Pixels pixels, const std::string& projection, const py::kwargs& options) {
   const ImageView view = viewOf(pixels);
   const auto kind = parseProjection(projection);
-  const BakeRequest request = requestFrom(options);
+  const BakeRequest request = fromKeywords(requestOptions(), options);
   std::optional<Probe> probe;
   EvaluatedBake result;
   {
@@ -66,7 +34,7 @@ py::dict bakePixels(Pixels pixels, const std::string& projection, const py::kwar
 
 #if PROBELIGHTS_MODULE_IO
 BakeRequest fileRequest(const std::string& projection, const py::kwargs& options) {
-  BakeRequest request = requestFrom(options);
+  BakeRequest request = fromKeywords(requestOptions(), options);
   request.probe.projection = parseProjectionChoice(projection);
   return request;
 }
@@ -115,24 +83,6 @@ py::list pyBakeFiles(const py::object& paths, const std::string& projection, con
 }
 #endif
 
-// The bake options' keywords with their defaults and what they do, from request.h's table: the docstrings
-// of bake, bake_file and bake_files end with it.
-std::string optionsDoc() {
-  std::string doc = "\n\nOptions (keyword=default):";
-  const BakeRequest defaults;
-  for (const RequestOption& o : requestOptions()) {
-    const std::string value = o.get(defaults);
-    // A switch, or an on|off option, is a bool here; a word in quotes; a number as it is.
-    const bool onOff = o.isSwitch() || o.values == "on|off";
-    const bool word =
-        !onOff && (o.values.find('|') != std::string::npos || o.values.find(',') != std::string::npos);
-    const std::string shown = onOff ? (value == "on" ? "True" : "False") : word ? "'" + value + "'" : value;
-    doc += "\n  " + o.name + "=" + shown + ": " + o.help +
-           (onOff || o.values.size() < 2 ? "" : " (" + o.values + ")");
-  }
-  return doc;
-}
-
 }  // namespace
 
 void defineBake(py::module_& m) {
@@ -143,19 +93,19 @@ void defineBake(py::module_& m) {
       "energy_share (N,), rect (N,4)), total_rgb (3,), timings_ms, notes, and evaluation (errors on "
       "`effects`) "
       "when evaluate/refit/max_error ask for it." +
-      optionsDoc();
+      optionsDoc(requestOptions());
   m.def("bake", &bakePixels, py::arg("pixels"), py::kw_only(), py::arg("projection") = "latlong",
         bakeDoc.c_str());
 #if PROBELIGHTS_MODULE_IO
   static const std::string fileDoc =
       "bake_file(path, *, projection='auto', **options): read a probe with OpenImageIO and bake it: the same "
       "dict as bake(), with source.path and timings_ms.load set." +
-      optionsDoc();
+      optionsDoc(requestOptions());
   static const std::string filesDoc =
       "bake_files(paths, *, projection='auto', **options): bake many probes (files, directories, globs) in "
       "order, the next loading while one bakes: a list of bake_file's dicts, with {'source': {'path'}, "
       "'error'} for a probe that failed." +
-      optionsDoc();
+      optionsDoc(requestOptions());
   m.def("bake_file", &pyBakeFile, py::arg("path"), py::kw_only(), py::arg("projection") = "auto",
         fileDoc.c_str());
   m.def("bake_files", &pyBakeFiles, py::arg("paths"), py::kw_only(), py::arg("projection") = "auto",

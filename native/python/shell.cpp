@@ -146,6 +146,50 @@ std::vector<Light> exportedLights(const py::dict& lights) {
   return out;
 }
 
+std::string optionText(const std::string& name, const std::string& takes, const py::handle& value) {
+  if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "true" : "false";
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (py::hasattr(value, "__index__")) return py::str(py::int_(py::reinterpret_borrow<py::object>(value)));
+  if (py::isinstance<py::float_>(value) || py::hasattr(value, "__float__"))
+    return py::repr(py::float_(py::reinterpret_borrow<py::object>(value)));
+  if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
+    std::string text;
+    for (const py::handle item : value) {
+      if (py::isinstance<py::list>(item) || py::isinstance<py::tuple>(item))
+        throw Error(name + " takes " + takes + ", got a list in a list");
+      text += (text.empty() ? "" : ",") + optionText(name, takes, item);
+    }
+    if (text.empty()) throw Error(name + " takes " + takes + ", got an empty list");
+    return text;
+  }
+  throw Error(name + " takes " + takes + ", got a " +
+              py::str(py::type::handle_of(value).attr("__name__")).cast<std::string>());
+}
+
+std::string optionDoc(const std::string& name, const std::string& values, const std::string& help,
+                      const std::string& value, bool isSwitch) {
+  // A switch, or an on|off option, is a bool here; a list of words or a word in quotes; a number as it is.
+  const bool onOff = isSwitch || values == "on|off";
+  const bool list = values.find(",...") != std::string::npos;
+  const bool word =
+      !onOff && (values.find('|') != std::string::npos || values.find(',') != std::string::npos);
+  std::string shown = onOff ? (value == "on" || value == "true" ? "True" : "False") : "'" + value + "'";
+  if (list) {
+    shown.clear();
+    for (std::size_t at = 0; at <= value.size();) {
+      const std::size_t comma = std::min(value.find(',', at), value.size());
+      const std::string item = value.substr(at, comma - at);
+      const bool number = !item.empty() && item.find_first_not_of("0123456789") == std::string::npos;
+      shown += (shown.empty() ? "" : ", ") + (number ? item : "'" + item + "'");
+      at = comma + 1;
+    }
+    shown = "[" + shown + "]";
+  } else if (!onOff && !word) {
+    shown = value;
+  }
+  return "\n  " + name + "=" + shown + ": " + help + (onOff || values.size() < 2 ? "" : " (" + values + ")");
+}
+
 std::vector<std::string> methodNames() {
   std::vector<std::string> names;
   for (const PlacementMethod& m : placementMethods()) names.push_back(m.name);

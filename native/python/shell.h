@@ -60,6 +60,48 @@ class DictWriter : public ResultWriter {
 py::dict toDict(const std::string& path, const Probe& probe, const BakeOptions& options,
                 const EvaluatedBake& bake, double loadMs = 0);
 
+// A keyword's value as its option's text (request.h): a switch from a bool, a number as Python writes it (its
+// repr reads back as the same double), a word as it is, a list or tuple of those joined by commas.
+std::string optionText(const std::string& name, const std::string& takes, const py::handle& value);
+
+// What the keywords ask for, every other option at its default (request.h, tradeoff.h: one table for the
+// module and the CLI). Options are applied in the table's order, whatever the keywords' order; an unknown
+// keyword is an Error naming them all.
+template <class Target>
+Target fromKeywords(const std::vector<TableOption<Target>>& table, const py::kwargs& kwargs) {
+  for (const auto& item : kwargs) {
+    const std::string key = item.first.cast<std::string>();
+    bool known = false;
+    for (const TableOption<Target>& o : table) known = known || o.name == key;
+    if (!known) {
+      std::string names;
+      for (const TableOption<Target>& o : table) names += (names.empty() ? "" : ", ") + o.name;
+      throw Error("unknown option '" + key + "': the options are projection, " + names);
+    }
+  }
+  Target target;
+  for (const TableOption<Target>& o : table)
+    if (kwargs.contains(o.name.c_str()))
+      o.set(target, o.name,
+            optionText(o.name, o.isSwitch() ? "True or False" : o.values, kwargs[o.name.c_str()]));
+  return target;
+}
+
+// One option's line of a docstring: "name=default: what it does (values)".
+std::string optionDoc(const std::string& name, const std::string& values, const std::string& help,
+                      const std::string& value, bool isSwitch);
+
+// The keywords of a table with their defaults and what they do: the docstrings of bake, bake_file, bake_files
+// and tradeoff end with it.
+template <class Target>
+std::string optionsDoc(const std::vector<TableOption<Target>>& table) {
+  std::string doc = "\n\nOptions (keyword=default):";
+  const Target defaults;
+  for (const TableOption<Target>& o : table)
+    doc += optionDoc(o.name, o.values, o.help, o.get(defaults), o.isSwitch());
+  return doc;
+}
+
 // The module's functions by area, each registering its own (module.cpp calls them in turn).
 void defineBake(py::module_& m);      // bake, bake_file, bake_files, _command (bake_functions.cpp)
 void defineAnalysis(py::module_& m);  // evaluate, tradeoff, sh_project, sh_sample (analysis_functions.cpp)

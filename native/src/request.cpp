@@ -229,27 +229,12 @@ const std::vector<RequestPreset>& requestPresets() {
   return presets;
 }
 
-std::string RequestOption::cliName() const {
-  if (!cli.empty()) return cli;
-  std::string s = "--" + name;
-  for (char& c : s)
-    if (c == '_') c = '-';
-  return s;
-}
-
 const std::vector<RequestOption>& requestOptions() {
   static const std::vector<RequestOption> options = makeOptions();
   return options;
 }
 
-const RequestOption& requestOption(const std::string& name) {
-  std::string known;
-  for (const RequestOption& o : requestOptions()) {
-    if (o.name == name || o.cliName() == name) return o;
-    known += (known.empty() ? "" : ", ") + o.name;
-  }
-  throw Error("unknown option '" + name + "': the options are " + known);
-}
+const RequestOption& requestOption(const std::string& name) { return tableOption(requestOptions(), name); }
 
 double parseReal(const std::string& option, const std::string& text) {
   try {

@@ -39,11 +39,10 @@ def bake_files(paths: Sequence[str], *, projection: str = "auto", **options: Any
     """Bake many probes (files, directories, globs) in order: bake_file()'s dicts, {'source', 'error'} for one
     that failed."""
 
-def tradeoff(pixels: Pixels, *, projection: str = "latlong", effects: str = "diffuse,shadow",
-             counts: Sequence[int] = ..., methods: Sequence[str] = ..., refit: bool = True,
-             evaluator_width: int = 2048, sun_profile: str = "cone", sun_cones: str = "free",
-             nonfinite: str = "error") -> dict[str, Any]:
-    """What accuracy costs in time: one row per (method, count, refit) with its bake time and errors."""
+def tradeoff(pixels: Pixels, *, projection: str = "latlong", **options: Any) -> dict[str, Any]:
+    """What accuracy costs in time: one row per (method, count, resolution, refit) with its bake time and errors.
+    Options: counts, methods, resolutions (lists), and preset, effects, refit, evaluator_width, centroid,
+    sun_angles, sun_profile, sun_cones, nonfinite as bake() takes them (defaults: tradeoff.__doc__)."""
 
 def evaluate(pixels: Pixels, lights: Lights, *, projection: str = "latlong", effects: str = "diffuse,shadow",
              evaluator_width: int = 2048, sun_profile: str = "cone", sun_cones: str = "free",

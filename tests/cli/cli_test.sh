@@ -120,6 +120,11 @@ check "bake --preset is the add-on's options" "'$bin' bake '$probe' --preset ble
 check "bake --both-cuts changes a preset given after it" "'$bin' bake '$probe' --both-cuts --preset blender -q -o - | python3 -c \"import json, sys; assert 'both cuts fitted: variance kept' in [n['text'] for n in json.load(sys.stdin)['notes']]\""
 check "bake --max-error picks a count" "'$bin' bake '$probe' --max-error 2% -o '$tmp/auto.json' -q && python3 -c \"import json; d=json.load(open('$tmp/auto.json')); a=d['evaluation']; assert a['auto_count']['met'] and a['diffuse'] <= 0.02 and len(d['lights']) == a['auto_count']['lights']\""
 check "tradeoff table, JSON and plot" "'$bin' tradeoff '$probe' --counts 4,16 --methods variance,sh -o '$tmp/t.json' --plot '$tmp/t.png' >'$tmp/t.txt' && head -c 8 '$tmp/t.png' | od -An -c | grep -q 'P   N   G' && python3 -c \"import json; d=json.load(open('$tmp/t.json')); assert len(d['rows']) == 12, len(d['rows'])\""
+# The tradeoff takes the bake's options by their names (one table, tradeoff.h): a preset makes its rows as the
+# preset's bake, the options after it change it; a bake's own option is refused.
+check "tradeoff --preset: the rows the preset's bake makes" "'$bin' tradeoff '$probe' --counts 16 --methods variance --resolutions auto --preset blender -o '$tmp/tp.json' >/dev/null && '$bin' bake '$probe' --preset blender --cuts one -n 16 -q -o '$tmp/tb.json' && python3 -c \"import json; r=json.load(open('$tmp/tp.json'))['rows']; e=json.load(open('$tmp/tb.json'))['evaluation']; assert [x['refit'] for x in r] == [False, True] and r[1]['resolution'] == 'auto'; assert all(abs(r[1][k] - e[k]) <= 1e-12 * e[k] for k in ('diffuse', 'shadow')), (r, e)\""
+expect_error "tradeoff refuses a bake's own option" "unknown option '--lights'" tradeoff "$probe" --lights 4
+expect_error "tradeoff refuses an empty count" "comma-separated list" tradeoff "$probe" --counts 4,,16
 
 # A library in one command: a bad file among good ones is reported on one line and the rest are baked (exit
 # 3); each result equals the single-probe bake; an output folder that cannot be made is refused before any work.

@@ -274,22 +274,47 @@ def test_the_module_and_the_cli_give_one_tradeoff_layout(bundled_probe, tmp_path
     a = np.zeros((64, 128, 3), np.float32) + 0.2
     r = pl.tradeoff(a, counts=[4], methods=["variance", "sh"], evaluator_width=64)
     assert key_paths(r) == key_paths(document)
-    # The SH method cuts on no working grid: "-" in both (the CLI measures full and 256 px grids, the module auto).
-    assert r["rows"]["resolution"] == ["auto", "auto", "-", "-"]
-    assert [row["resolution"] for row in document["rows"]] == ["full", "full", "256", "256", "-", "-"]
+    # One grid by default in both, from the core's table (full and 256 px; the SH method cuts on none: "-").
+    assert r["rows"]["resolution"] == [row["resolution"] for row in document["rows"]] == [
+        "full", "full", "256", "256", "-", "-"]
 
 
 def test_tradeoff_rows(bundled_probe):
     import numpy as np
     a = np.zeros((64, 128, 3), np.float32) + 0.2
     a[12, 40] = 3000.0
-    rows = pl.tradeoff(a, counts=[4, 16], methods=["variance"], evaluator_width=128)["rows"]
+    rows = pl.tradeoff(a, counts=[4, 16], methods=["variance"], resolutions=["auto"], evaluator_width=128)["rows"]
     assert list(zip(rows["lights"], rows["refit"])) == [(4, False), (4, True), (16, False), (16, True)]
     plain = {n: e for n, e, refit in zip(rows["lights"], rows["diffuse"], rows["refit"]) if not refit}
     assert plain[16] < plain[4] and (rows["bake_ms"] > 0).all() and (rows["shadow"] >= 0).all()
     assert rows["method"] == ["variance"] * 4 and rows["resolution"] == ["auto"] * 4
     with pytest.raises(pl.Error, match="at least 1"):
         pl.tradeoff(a, counts=[0])
+    for bad, message in (({"lights": 4}, "unknown option 'lights'"), ({"counts": []}, "empty list"),
+                         ({"counts": [[4]]}, "list in a list"), ({"methods": ["nope"]}, "nope"),
+                         ({"resolutions": "tiny"}, "tiny")):
+        with pytest.raises(pl.Error, match=message):
+            pl.tradeoff(a, **bad)
+
+
+def test_a_tradeoff_row_is_the_bake_its_preset_makes(bundled_probe):
+    """preset= makes and judges each row as that recipe's bake (the add-on's tradeoff asks for its bake's preset):
+    the refit row of one cut at 16 lights has the errors of bake(preset=..., cuts='one') at 16; without the refit
+    the row is the bake without it. (Beside refit rows, a plain row's angles are fitted on the refit's denser
+    ground points: 1e-4 of its error apart.)"""
+    import numpy as np
+    a = np.zeros((64, 128, 3), np.float32) + 0.2
+    a[12, 40] = 3000.0
+    grid = dict(counts=[16], methods=["variance"], resolutions=["auto"])
+    for preset in ("blender", "blender-eevee"):
+        refit_rows = pl.tradeoff(a, preset=preset, **grid)["rows"]
+        plain_rows = pl.tradeoff(a, preset=preset, refit=False, **grid)["rows"]
+        refit = pl.bake(a, preset=preset, lights=16, cuts="one")["evaluation"]
+        plain = pl.bake(a, preset=preset, lights=16, cuts="one", refit=False)["evaluation"]
+        assert list(refit_rows["refit"]) == [False, True] and list(plain_rows["refit"]) == [False]
+        for effect in ("diffuse", "shadow"):
+            assert refit_rows[effect][1] == pytest.approx(refit[effect], rel=1e-12), (preset, effect)
+            assert plain_rows[effect][0] == pytest.approx(plain[effect], rel=1e-12), (preset, effect)
 
 
 @full_only

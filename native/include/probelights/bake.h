@@ -31,8 +31,8 @@ struct AccuracyOptions {
   Effects effects = kDiffuse;
   bool evaluate = false, refit = false;
   double maxError = 0;
-  int evaluatorWidth = 2048;    // EvaluatorOptions::maxWidth (the add-on's quick estimate uses 512)
-  bool moveDirections = false;  // the refit also moves directions (refit.h)
+  int evaluatorWidth = EvaluatorOptions{}.maxWidth;  // the add-on's quick estimate uses 512 (its preset)
+  bool moveDirections = false;                       // the refit also moves directions (refit.h)
   // The lights' angles (sun_angles.h), fitted when shadows are evaluated, and the renderer's sun they are
   // judged and fitted as (cone.h).
   SunAngles sunAngles = SunAngles::Fit;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "probelights/bake.h"
+#include "probelights/error.h"
 #include "probelights/probe.h"
 
 namespace probelights {
@@ -38,21 +39,43 @@ struct RequestPreset {
 };
 const std::vector<RequestPreset>& requestPresets();
 
-// An option of a request by name: the module's keyword ("max_error") and the CLI's option ("--max-error",
-// the name with '-' for '_', unless `cli` says otherwise).
-struct RequestOption {
+// An option of a table by name (a bake's request, a tradeoff's): the module's keyword ("max_error") and the
+// CLI's option ("--max-error", the name with '-' for '_', unless `cli` says otherwise). `Target` is what the
+// table's options fill.
+template <class Target>
+struct TableOption {
   std::string name;
   std::string values;  // what it takes, for usage texts ("N", "one|both|auto"); "" for a switch
   std::string help;    // what it does, one short line
   // Sets the option from text (a switch takes true/false, on/off or 1/0); throws Error naming the option as
   // `spelled` (the caller's spelling: "--max-error" or "max_error").
-  std::function<void(BakeRequest&, const std::string& spelled, const std::string& text)> set;
-  // The option's value in a request as text: of BakeRequest{}, its default.
-  std::function<std::string(const BakeRequest&)> get;
+  std::function<void(Target&, const std::string& spelled, const std::string& text)> set;
+  // The option's value in a target as text: of Target{}, its default.
+  std::function<std::string(const Target&)> get;
   std::string cli;  // the CLI's spelling when not "--" + name
-  std::string cliName() const;
+  std::string cliName() const {
+    if (!cli.empty()) return cli;
+    std::string s = "--" + name;
+    for (char& c : s)
+      if (c == '_') c = '-';
+    return s;
+  }
   bool isSwitch() const { return values.empty(); }
 };
+using RequestOption = TableOption<BakeRequest>;
+
+// The option called `name` (module keyword or CLI spelling) in `table`; throws Error naming the table's
+// options for another.
+template <class Target>
+const TableOption<Target>& tableOption(const std::vector<TableOption<Target>>& table,
+                                       const std::string& name) {
+  std::string known;
+  for (const TableOption<Target>& o : table) {
+    if (o.name == name || o.cliName() == name) return o;
+    known += (known.empty() ? "" : ", ") + o.name;
+  }
+  throw Error("unknown option '" + name + "': the options are " + known);
+}
 
 // Every option of a bake request (not the projection: a file's is chosen by ProbeOptions, a buffer's given
 // with it, and their defaults differ).

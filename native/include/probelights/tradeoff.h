@@ -9,6 +9,7 @@
 #include "probelights/bake.h"
 #include "probelights/evaluate.h"
 #include "probelights/placement.h"
+#include "probelights/request.h"
 
 namespace probelights {
 
@@ -25,6 +26,7 @@ struct TradeoffRow {
 struct TradeoffOptions {
   std::vector<Method> methods = everyMethod();
   std::vector<int> counts{1, 2, 4, 8, 16, 32, 64, 128, 256, 512, 1024};
+  CentroidWeight centroid = CentroidWeight::Energy;  // where each row's lights stand in their regions
   std::vector<WorkingResolution> resolutions{{WorkingResolution::Mode::Full, 0},
                                              {WorkingResolution::Mode::Width, 256}};
   bool refit = true;  // also evaluate each bake refit, colours and directions (counts up to kMaxRefitLights)
@@ -33,5 +35,24 @@ struct TradeoffOptions {
 
 std::vector<TradeoffRow> tradeoff(const Probe& probe, const Evaluator& evaluator,
                                   const TradeoffOptions& options);
+
+// A tradeoff as every shell asks for it (the CLI's tradeoff, the module's tradeoff()), filled by the names
+// of tradeoffOptions(): the grid (counts, methods, resolutions) and, in `judging`, how each row's lights are
+// made and judged, by the bake request's options (request.h) of the same names: preset, effects, refit,
+// evaluator_width, centroid, sun_angles, sun_profile, sun_cones, nonfinite. So `preset` makes each row as
+// that recipe's bake would (the Blender add-on's tradeoff asks for its bake's preset).
+BakeRequest tradeoffJudging();  // the bake's defaults but effects diffuse and shadow, refit on
+struct TradeoffRequest {
+  TradeoffOptions grid;
+  BakeRequest judging = tradeoffJudging();
+};
+using TradeoffOption = TableOption<TradeoffRequest>;
+const std::vector<TradeoffOption>& tradeoffOptions();
+const TradeoffOption& tradeoffOption(const std::string& name);
+
+// The tradeoff a request asks for: its evaluator built on the probe, then every row. `evaluatorMs`, when
+// given, receives the time the evaluator's truths took.
+std::vector<TradeoffRow> tradeoff(const Probe& probe, const TradeoffRequest& request,
+                                  double* evaluatorMs = nullptr);
 
 }  // namespace probelights
