@@ -20,11 +20,16 @@ ARGS = harness.args()
 harness.install_addon(ARGS.zip)
 
 WIDTH, HEIGHT = 128, 96
-# The noise the bound needs: with a light tree (4.0+) 128 samples leave 64 suns 0.17-0.30 % from the world (5.3.0);
-# Cycles 3.x picks among many lamps uniformly, and 64 suns at 128 samples were 3.1 % from it (3.4.1), at 256 0.94 %.
-SAMPLES = 128 if bpy.app.version >= (4, 0, 0) else 256
+# The noise the bound needs: with a light tree (4.0+) 64 samples leave 16 and 64 suns 0.29-0.82 % from the world on
+# the three probes (4.5.15, 5.0.1, 5.2.3, 5.3.0; at 128 samples 0.30-0.60 %), a third of the bound; Cycles 3.x picks among
+# many lamps uniformly, and 64 suns at 128 samples were 3.1 % from it (3.4.1), at 256 0.94 %. The glossy spheres
+# need 128 (4.0+): St. Peter's at roughness 0.2 is 2.4 % from the world there (4.5.15), at 64 samples the bundled
+# probe's 1.1 % rises to 1.55 %.
+SAMPLES = 64 if bpy.app.version >= (4, 0, 0) else 256
+GLOSSY_SAMPLES = 128
 if ARGS.size:  # README pictures: e.g. --size 480x360x1024 --save docs
     WIDTH, HEIGHT, SAMPLES = (int(v) for v in ARGS.size.split("x"))
+    GLOSSY_SAMPLES = SAMPLES
 BOUND = 0.025  # mean relative difference of lit 8x8 blocks at 16 and 64 lights (4.5.15: 0.1-0.55 %)
 LUM = render_scene.LUM
 diffuse_material, render, block_difference, save_png = (render_scene.diffuse_material, render_scene.render,
@@ -172,7 +177,7 @@ def test_glossy_materials_render_like_the_world():
     for probe in probes:
         harness.empty_scene()
         harness.env_world(bpy.data.images.load(probe))
-        render_scene.glossy_spheres(3 * 64, 96, SAMPLES)
+        render_scene.glossy_spheres(3 * 64, 96, GLOSSY_SAMPLES)
         world_lit = render_scene.thirds(render())
         for take, n in (("ALL", 16), ("ALL", 64), ("SOURCES", 64)):
             assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=n, lamps_take=take) == {"FINISHED"}
@@ -180,7 +185,7 @@ def test_glossy_materials_render_like_the_world():
             diffs = [block_difference(a, b)[0] for a, b in zip(world_lit, lit)]
             print("  %-29s %-7s %2d lamps: roughness %s: %s %% from the world (%d spp)" % (
                 os.path.basename(probe), take, n, "/".join("%g" % r for r in render_scene.ROUGHNESS),
-                " / ".join("%.2f" % (100 * d) for d in diffs), SAMPLES), flush=True)
+                " / ".join("%.2f" % (100 * d) for d in diffs), GLOSSY_SAMPLES), flush=True)
             worst[take] = max(worst[take], *diffs)
     assert worst["ALL"] < BOUND and worst["SOURCES"] < BOUND, (
         "glossy materials differ from the world by %.2f %% (default split), %.2f %% (sources + residual), bound "
@@ -212,7 +217,7 @@ def test_glass_refracts_the_world_once():
             roughness, ratio, SAMPLES), flush=True)
         # The middle shows mostly the plane behind the glass, lit by the lamps (81 % of its light), and each Cycles
         # renders it a little differently: 1.033-1.035 in Debian's 3.4.1 (256 samples, its noise 0.8 %), 1.004-1.012
-        # in 4.5.15, 5.2.3 and 5.3.0, 0.969-0.970 in 5.0.1 (128 samples).
+        # in 4.5.15, 5.2.3 and 5.3.0, 0.969-0.970 in 5.0.1 (128 samples; at 64: 0.972-0.974 in 5.0.1, 0.990-1.001 in the others).
         assert abs(ratio - 1) < 0.05, ratio
 
 
