@@ -20,11 +20,11 @@ ARGS = harness.args()
 harness.install_addon(ARGS.zip)
 
 WIDTH, HEIGHT = 128, 96
-# The noise the bound needs: with a light tree (4.0+) 64 samples leave 16 and 64 suns 0.29-0.82 % from the world on
-# the three probes (4.5.15, 5.0.1, 5.2.3, 5.3.0; at 128 samples 0.30-0.60 %), a third of the bound; Cycles 3.x picks among
-# many lamps uniformly, and 64 suns at 128 samples were 3.1 % from it (3.4.1), at 256 0.94 %. The glossy spheres
-# need 128 (4.0+): St. Peter's at roughness 0.2 is 2.4 % from the world there (4.5.15), at 64 samples the bundled
-# probe's 1.1 % rises to 1.55 %.
+# The noise the bound needs: with a light tree (4.0+) 64 samples leave 16 and 64 suns 0.29-0.82 % from the world
+# on the three probes (4.5.15, 5.0.1, 5.2.3, 5.3.0; at 128 samples 0.30-0.60 %), a third of the bound; Cycles 3.x
+# picks among many lamps uniformly, and 64 suns at 128 samples were 3.1 % from it (3.4.1), at 256 0.94 %. The
+# glossy spheres need 128 (4.0+): St. Peter's at roughness 0.2 is 2.4 % from the world there (4.5.15), at 64
+# samples the bundled probe's 1.1 % rises to 1.55 %.
 SAMPLES = 64 if bpy.app.version >= (4, 0, 0) else 256
 GLOSSY_SAMPLES = 128
 if ARGS.size:  # README pictures: e.g. --size 480x360x1024 --save docs
@@ -217,7 +217,8 @@ def test_glass_refracts_the_world_once():
             roughness, ratio, SAMPLES), flush=True)
         # The middle shows mostly the plane behind the glass, lit by the lamps (81 % of its light), and each Cycles
         # renders it a little differently: 1.033-1.035 in Debian's 3.4.1 (256 samples, its noise 0.8 %), 1.004-1.012
-        # in 4.5.15, 5.2.3 and 5.3.0, 0.969-0.970 in 5.0.1 (128 samples; at 64: 0.972-0.974 in 5.0.1, 0.990-1.001 in the others).
+        # in 4.5.15, 5.2.3 and 5.3.0, 0.969-0.970 in 5.0.1 (128 samples; at 64: 0.972-0.974 in 5.0.1, 0.990-1.001 in
+        # the others).
         assert abs(ratio - 1) < 0.05, ratio
 
 
