@@ -184,7 +184,7 @@ std::string bakeOptionsUsage() {
   for (const RequestOption& o : requestOptions())
     out += usageLines(
         "  " + o.cliName() + (o.name == "lights" ? ", -n" : "") + (o.isSwitch() ? "" : " " + o.values),
-        o.help + (o.isSwitch() ? "" : " (default " + o.get(defaults) + ")"));
+        o.help + (o.isSwitch() || o.get(defaults).empty() ? "" : " (default " + o.get(defaults) + ")"));
   return out;
 }
 

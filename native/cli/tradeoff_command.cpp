@@ -17,8 +17,9 @@ std::string tradeoffOptionsUsage() {
   std::string out;
   const TradeoffRequest defaults;
   for (const TradeoffOption& o : tradeoffOptions())
-    out += usageLines("  " + o.cliName() + (o.isSwitch() ? "" : " " + o.values),
-                      o.help + (o.isSwitch() ? "" : " (default " + o.get(defaults) + ")"));
+    out += usageLines(
+        "  " + o.cliName() + (o.isSwitch() ? "" : " " + o.values),
+        o.help + (o.isSwitch() || o.get(defaults).empty() ? "" : " (default " + o.get(defaults) + ")"));
   return out + usageLines("  --no-refit", "no refit rows");
 }
 
