@@ -1,0 +1,71 @@
+"""The render settings the add-on offers for its lamps (Cycles' clamp and light tree, EEVEE's shadow pool), and
+their restore."""
+
+import bpy
+
+import harness
+from addon_common import bake
+
+
+def test_cycles_settings_offer_and_restore():
+    harness.empty_scene()
+    scene = bpy.context.scene
+    harness.env_world(bpy.data.images.load(harness.BUNDLED_PROBE))
+    scene.cycles.sample_clamp_indirect = 10.0
+    has_tree = hasattr(scene.cycles, "use_light_tree")
+    if has_tree:
+        scene.cycles.use_light_tree = False
+    bake(count=64)
+    # The measured cost (cycles_clamp.json, render_cost.json): the clamp in 3.4 (no light tree); the light tree
+    # switched off in 4.x and later, where the clamp darkens nothing measurable and is not mentioned.
+    expected = "indirect clamp (10)" if not has_tree else "light tree is off"
+    assert expected in scene.probe_lights.last_warnings, scene.probe_lights.last_warnings
+    assert not has_tree or "indirect clamp" not in scene.probe_lights.last_warnings, scene.probe_lights.last_warnings
+    assert bpy.ops.probe_lights.cycles_settings() == {"FINISHED"}
+    assert scene.cycles.sample_clamp_indirect == 0.0 and (not has_tree or scene.cycles.use_light_tree)
+    assert harness.addon_module("cycles_settings").advice(scene, 64) == ""
+    assert bpy.ops.probe_lights.restore() == {"FINISHED"}
+    assert scene.cycles.sample_clamp_indirect == 10.0 and (not has_tree or not scene.cycles.use_light_tree)
+
+
+def test_eevee_shadow_pool_follows_the_scene_and_restore():
+    """EEVEE Next (4.2+) keeps shadows in a pool that about 19 suns fill: a bake in EEVEE makes room by itself,
+    without ever shrinking the pool or going past 1 GB, and says so; so does a render in EEVEE of suns baked under
+    Cycles; the offer in the panel does it too; Restore world puts the user's values back."""
+    harness.empty_scene()
+    scene = bpy.context.scene
+    harness.env_world(bpy.data.images.load(harness.BUNDLED_PROBE))
+    scene.render.engine = harness.eevee_engine()
+    settings = scene.probe_lights
+    shadows = harness.addon_module("eevee_settings")
+    if bpy.app.version < (4, 2, 0):  # EEVEE Legacy has no shadow pool
+        bake(count=64)
+        assert "EEVEE" not in settings.last_notes and shadows.advice(scene, 64) == ""
+        print("  skipped: EEVEE Legacy (Blender %s) has no shadow pool" % bpy.app.version_string)
+        return
+    scene.eevee.shadow_pool_size, scene.eevee.shadow_resolution_scale = "512", 1.0
+    bake(count=16)  # 16 suns: about 1,900 pages, the default pool holds 2,048
+    assert "EEVEE" not in settings.last_notes and not shadows.fitted(scene), settings.last_notes
+    bake(count=30)  # about 3,500 pages: a 1 GB pool at full resolution
+    assert "EEVEE: shadow pool 1024 MB" in settings.last_notes, settings.last_notes
+    assert (scene.eevee.shadow_pool_size, scene.eevee.shadow_resolution_scale) == ("1024", 1.0)
+    bake(count=64)  # more than 1 GB holds at full resolution: half resolution in the pool already set
+    assert shadows.advice(scene, 64) == "" and shadows.baked_suns(scene) == 64
+    assert (scene.eevee.shadow_pool_size, scene.eevee.shadow_resolution_scale) == ("1024", 0.5)
+    assert bpy.ops.probe_lights.restore() == {"FINISHED"}
+    assert (scene.eevee.shadow_pool_size, scene.eevee.shadow_resolution_scale) == ("512", 1.0)
+    # Baked under Cycles (no pool to fit), then set to EEVEE: the panel says what to do in one line, the offer
+    # does it, and Restore puts it back.
+    scene.render.engine = "CYCLES"
+    bake(count=30)
+    assert not shadows.fitted(scene) and scene.eevee.shadow_pool_size == "512"
+    scene.render.engine = harness.eevee_engine()
+    line = shadows.advice(scene, shadows.baked_suns(scene))
+    assert line == ("EEVEE's shadow pool is too small for 30 suns and drops shadows at random: fit the shadows to "
+                    "the lamps"), line
+    assert bpy.ops.probe_lights.eevee_settings() == {"FINISHED"} and shadows.advice(scene, 30) == ""
+    assert bpy.ops.probe_lights.restore() == {"FINISHED"} and scene.eevee.shadow_pool_size == "512"
+    scene.eevee.shadow_resolution_scale = 0.75  # between two measured scales: costed as the finer one
+    assert shadows._pages(2140, 0.75) == 2354
+    scene.eevee.shadow_resolution_scale = 1.0
+    scene.render.engine = "CYCLES"
