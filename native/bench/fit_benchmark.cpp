@@ -112,7 +112,7 @@ void BM_Refit(benchmark::State& state) {
 void BM_FinishLights(benchmark::State& state) {
   Click& c = click(static_cast<int>(state.range(0)));
   std::vector<Light> out;
-  for (auto _ : state) out = finishLights(*c.evaluator, c.lights, true, true, SunAngles::Fit);
+  for (auto _ : state) out = finishLights(*c.evaluator, c.lights, FinishOptions{SunAngles::Fit, true, true});
   const EffectErrors e = c.evaluator->evaluate(out);
   state.counters["diffuse_pct"] = 100 * e.diffuse;
   state.counters["shadow_pct"] = 100 * e.shadow;

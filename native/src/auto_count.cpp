@@ -9,8 +9,8 @@
 namespace probelights {
 
 AutoCountResult autoCount(const Probe& probe, const Evaluator& evaluator, BakeOptions options,
-                          double tolerance, bool refit, int maxLights, bool moveDirections,
-                          const WorkingGrid* grid, SunAngles angles) {
+                          double tolerance, const FinishOptions& finish, int maxLights,
+                          const WorkingGrid* grid) {
   if (!(tolerance > 0)) throw Error("the error tolerance must be positive");
   AutoCountResult best;
   // One working grid for every count tried (the grid does not depend on the count).
@@ -19,10 +19,7 @@ AutoCountResult autoCount(const Probe& probe, const Evaluator& evaluator, BakeOp
   auto attempt = [&](int n) {
     options.lights = n;
     BakeResult r = grid->bake(probe, options);
-    // Decided before the call: its by-value parameter may be moved into before the other arguments are read
-    // (clang evaluates them left to right, GCC right to left; the Windows and macOS builds are clang's).
-    const bool refitThese = refit && r.lights.size() <= kMaxRefitLights;
-    r.lights = finishLights(evaluator, std::move(r.lights), refitThese, moveDirections, angles);
+    r.lights = finishLights(evaluator, std::move(r.lights), finish);
     EffectErrors e = evaluator.evaluate(r.lights);
     best.tried.push_back({n, e.worst(evaluator.effects())});
     return std::pair{std::move(r), e};

@@ -79,8 +79,7 @@ EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOpt
   const Evaluator evaluator = grid.table() ? Evaluator(probe, *grid.table(), a.effects, evaluatorOptions)
                                            : Evaluator(probe, a.effects, evaluatorOptions);
   if (a.maxError > 0) {
-    AutoCountResult chosen =
-        autoCount(probe, evaluator, options, a.maxError, a.refit, 1024, a.moveDirections, &grid, a.sunAngles);
+    AutoCountResult chosen = autoCount(probe, evaluator, options, a.maxError, a.finish(), 1024, &grid);
     out.bake = std::move(chosen.bake);
     out.autoCount = true, out.met = chosen.met, out.tried = std::move(chosen.tried),
     out.count = chosen.lights;
@@ -103,12 +102,10 @@ EvaluatedBake bakeEvaluated(const Probe& probe, BakeOptions options, AccuracyOpt
     std::vector<Note> limit;  // the note goes on the bake kept (chooseCut returns another)
     keepRefitWithinItsLimit(a, out.bake.lights.size(), limit);
     if (twoCuts) {
-      ChosenCut chosen = chooseCut(probe, grid, evaluator, options, std::move(out.bake), a.cuts, a.refit,
-                                   a.moveDirections, a.sunAngles);
+      ChosenCut chosen = chooseCut(probe, grid, evaluator, options, std::move(out.bake), a.cuts, a.finish());
       out.bake = std::move(chosen.bake), out.cut = chosen.cut, out.energyShift = chosen.energyShift;
     } else {
-      out.bake.lights = finishLights(evaluator, std::move(out.bake.lights), a.refit, a.moveDirections,
-                                     a.sunAngles, &out.energyShift);
+      out.bake.lights = finishLights(evaluator, std::move(out.bake.lights), a.finish(), &out.energyShift);
     }
     out.bake.notes.insert(out.bake.notes.end(), limit.begin(), limit.end());
   }

@@ -18,18 +18,19 @@ std::string toString(CutChoice cuts) { return std::string(nameOf(kCutChoices, cu
 CutChoice parseCutChoice(const std::string& name) { return parseName(kCutChoices, "cuts", name); }
 
 ChosenCut chooseCut(const Probe& probe, const WorkingGrid& grid, const Evaluator& evaluator,
-                    const BakeOptions& options, BakeResult first, CutChoice cuts, bool refit,
-                    bool moveDirections, SunAngles angles) {
+                    const BakeOptions& options, BakeResult first, CutChoice cuts,
+                    const FinishOptions& finish) {
   BakeOptions other = options;
   other.method = options.method == Method::Variance ? Method::MedianCut : Method::Variance;
   BakeResult second = grid.bake(probe, other);
   const std::vector<Receiver> receivers = evaluator.fitReceivers(true);
-  const bool finishBoth = cuts == CutChoice::Both || !refit || first.lights.size() <= kBothFinishedUpTo;
+  const bool finishBoth = cuts == CutChoice::Both || !finish.refits(first.lights.size()) ||
+                          first.lights.size() <= kBothFinishedUpTo;
   double shifts[2] = {0, 0}, errors[2];
   std::vector<Light>* lights[2] = {&first.lights, &second.lights};
   if (finishBoth) {
     for (int c = 0; c < 2; ++c) {
-      *lights[c] = finishLights(evaluator, std::move(*lights[c]), refit, moveDirections, angles, &shifts[c]);
+      *lights[c] = finishLights(evaluator, std::move(*lights[c]), finish, &shifts[c]);
       errors[c] = evaluator.fitError(receivers, *lights[c]);
     }
   } else {
@@ -37,14 +38,13 @@ ChosenCut chooseCut(const Probe& probe, const WorkingGrid& grid, const Evaluator
     // solve alone: placing dark lights too picked worse at 64 suns).
     bool fitted[2];
     for (int c = 0; c < 2; ++c) {
-      fitted[c] = applySunAngles(angles, &evaluator, *lights[c], true);
+      fitted[c] = applySunAngles(finish.angles, &evaluator, *lights[c], true);
       std::vector<Light> judged = *lights[c];
       solveColours(evaluator, receivers, judged);
       errors[c] = evaluator.fitError(receivers, judged);
     }
     const int keep = errors[1] < errors[0] ? 1 : 0;
-    *lights[keep] = finishAngled(evaluator, std::move(*lights[keep]), fitted[keep], refit, moveDirections,
-                                 angles, &shifts[keep]);
+    *lights[keep] = finishAngled(evaluator, std::move(*lights[keep]), fitted[keep], finish, &shifts[keep]);
   }
   const bool swap = errors[1] < errors[0];
   const Method kept = swap ? other.method : options.method, left = swap ? options.method : other.method;

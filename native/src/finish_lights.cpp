@@ -5,17 +5,17 @@
 namespace probelights {
 
 std::vector<Light> finishAngled(const Evaluator& evaluator, std::vector<Light> lights, bool fitted,
-                                bool refit, bool moveDirections, SunAngles angles, double* energyShift) {
+                                const FinishOptions& finish, double* energyShift) {
   double before = 0;  // (the angles do not change the colours)
   for (const Light& l : lights) before += l.rgb[0] + l.rgb[1] + l.rgb[2];
   // The directions move for the shadows the angled lights cast; then the angles again for the moved lights,
   // and their colours for those angles. The refit is kept only if it fits the fit receivers better (the joint
   // fit can lose on shadows what it wins on shading).
-  if (refit) {
-    std::vector<Light> moved = refitIrradiance(evaluator, lights, nullptr, moveDirections);
+  if (finish.refits(lights.size())) {
+    std::vector<Light> moved = refitIrradiance(evaluator, lights, nullptr, finish.moveDirections);
     keepSunCones(evaluator.sunCones(), moved);  // a moved light keeps its angle, which may now cross
     if (fitted) {
-      applySunAngles(angles, &evaluator, moved, true);
+      applySunAngles(finish.angles, &evaluator, moved, true);
       moved = refitIrradiance(evaluator, moved);
     }
     const std::vector<Receiver> receivers = evaluator.fitReceivers(true);
@@ -30,11 +30,11 @@ std::vector<Light> finishAngled(const Evaluator& evaluator, std::vector<Light> l
   return lights;
 }
 
-std::vector<Light> finishLights(const Evaluator& evaluator, std::vector<Light> lights, bool refit,
-                                bool moveDirections, SunAngles angles, double* energyShift) {
+std::vector<Light> finishLights(const Evaluator& evaluator, std::vector<Light> lights,
+                                const FinishOptions& finish, double* energyShift) {
   // Angles first, so the directions move for the shadows the lights will cast.
-  const bool fitted = applySunAngles(angles, &evaluator, lights, refit);
-  return finishAngled(evaluator, std::move(lights), fitted, refit, moveDirections, angles, energyShift);
+  const bool fitted = applySunAngles(finish.angles, &evaluator, lights, finish.refits(lights.size()));
+  return finishAngled(evaluator, std::move(lights), fitted, finish, energyShift);
 }
 
 }  // namespace probelights

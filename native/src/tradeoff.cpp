@@ -34,12 +34,13 @@ std::vector<TradeoffRow> tradeoff(const Probe& probe, const Evaluator& evaluator
         const auto resName = usesWorkingGrid(method) ? std::optional<WorkingResolution>(res) : std::nullopt;
         // A row's time includes what finishing its lights took (the angle fit, the refit).
         Stopwatch plain;
-        const auto lights = finishLights(evaluator, r.lights, false, false, o.sunAngles);
+        const auto lights = finishLights(evaluator, r.lights, FinishOptions{o.sunAngles});
         rows.push_back({method, n, static_cast<int>(lights.size()), resName, false, bakeMs(r) + plain.ms(),
                         evaluator.evaluate(lights)});
-        if (o.refit && (evaluator.effects() & kDiffuse) && r.lights.size() <= kMaxRefitLights) {
+        const FinishOptions refitted{o.sunAngles, true, /*moveDirections=*/true};
+        if (o.refit && (evaluator.effects() & kDiffuse) && refitted.refits(r.lights.size())) {
           Stopwatch t;
-          auto refit = finishLights(evaluator, r.lights, true, /*moveDirections=*/true, o.sunAngles);
+          auto refit = finishLights(evaluator, r.lights, refitted);
           rows.push_back({method, n, static_cast<int>(refit.size()), resName, true, bakeMs(r) + t.ms(),
                           evaluator.evaluate(refit)});
         }

@@ -14,14 +14,14 @@ namespace {
 TEST(AutoCount, FindsTheSmallestCountThatMeetsTheTolerance) {
   Probe probe = loadProbe(PROBELIGHTS_BUNDLED_PROBE);
   Evaluator ev(probe, kDiffuse);
-  auto r = autoCount(probe, ev, BakeOptions{}, 0.02, false);
+  auto r = autoCount(probe, ev, BakeOptions{}, 0.02);
   ASSERT_TRUE(r.met);
   EXPECT_LE(r.errors.diffuse, 0.02);
   EXPECT_EQ(static_cast<int>(r.bake.lights.size()), r.lights);
   BakeOptions fewer;
   fewer.lights = r.lights - 1;
   EXPECT_GT(ev.evaluate(bake(probe, fewer).lights).diffuse, 0.02);  // one light fewer misses it
-  auto never = autoCount(probe, ev, BakeOptions{}, 1e-9, false, 8);
+  auto never = autoCount(probe, ev, BakeOptions{}, 1e-9, {}, 8);
   EXPECT_FALSE(never.met);
 }
 
@@ -30,7 +30,7 @@ TEST(AutoCount, AMissKeepsTheCountWithTheLowestError) {
   // count with the lowest error tried, never a larger count that did worse.
   Probe probe = loadProbe(PROBELIGHTS_BUNDLED_PROBE);
   Evaluator ev(probe, kDiffuse | kShadow, {256, false});
-  auto r = autoCount(probe, ev, BakeOptions{}, 1e-9, false, 1024);
+  auto r = autoCount(probe, ev, BakeOptions{}, 1e-9, {}, 1024);
   ASSERT_FALSE(r.met);
   double lowest = 1e300;
   int at = 0;

@@ -141,7 +141,7 @@ TEST(Refit, DenserGroundPointsKeepTheRefitFromOverfitting) {
   BakeOptions o;
   o.lights = 16;
   o.centroid = CentroidWeight::Energy2;
-  auto lights = finishLights(ev, bake(probe, o).lights, true, true, SunAngles::Fit);
+  auto lights = finishLights(ev, bake(probe, o).lights, FinishOptions{SunAngles::Fit, true, true});
   EXPECT_LT(ev.evaluate(lights).shadow, 0.016);
 }
 

@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "probelights/evaluate.h"
+#include "probelights/finish_lights.h"
 #include "probelights/placement.h"
-#include "probelights/sun_angles.h"
 
 namespace probelights {
 
@@ -20,13 +20,12 @@ struct AutoCountResult {
 };
 
 // The smallest N (doubling, then bisecting) whose worst error over the evaluator's effects is <= tolerance,
-// up to maxLights; with refit, each candidate is refit first. When none meets it: the count with the lowest
-// error tried (the doubling stops two doublings past it without improvement), so a miss never costs more
-// lights than a count that did better. `grid`: the probe's working grid for these options if the caller has
-// built it, else autoCount builds it.
-// `angles`: each candidate's sun angles (sun_angles.h) before it is evaluated.
+// up to maxLights; each candidate is finished first (finishLights: its angles, its refit if asked). When
+// none meets it: the count with the lowest error tried (the doubling stops two doublings past it without
+// improvement), so a miss never costs more lights than a count that did better. `grid`: the probe's working
+// grid for these options if the caller has built it, else autoCount builds it.
 AutoCountResult autoCount(const Probe& probe, const Evaluator& evaluator, BakeOptions options,
-                          double tolerance, bool refit, int maxLights = 1024, bool moveDirections = false,
-                          const WorkingGrid* grid = nullptr, SunAngles angles = SunAngles::Spread);
+                          double tolerance, const FinishOptions& finish = {}, int maxLights = 1024,
+                          const WorkingGrid* grid = nullptr);
 
 }  // namespace probelights

@@ -40,6 +40,7 @@ struct AccuracyOptions {
   SunCones sunCones = SunCones::Free;  // how wide a cone may be (cone.h), fitted or not
   // Which cut's lights (CutChoice) when the bake's method is variance or median cut. Not with a tolerance.
   CutChoice cuts = CutChoice::One;
+  FinishOptions finish() const { return {sunAngles, refit, moveDirections}; }  // how the lights are finished
 };
 
 struct EvaluatedBake {

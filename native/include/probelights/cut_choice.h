@@ -5,8 +5,8 @@
 #include <string>
 
 #include "probelights/evaluate.h"
+#include "probelights/finish_lights.h"
 #include "probelights/placement.h"
-#include "probelights/sun_angles.h"
 
 namespace probelights {
 
@@ -38,7 +38,7 @@ struct ChosenCut {
 // the same grid, and the better of the two kept. Finishing as finishLights with `refit`, `moveDirections`
 // and `angles`.
 ChosenCut chooseCut(const Probe& probe, const WorkingGrid& grid, const Evaluator& evaluator,
-                    const BakeOptions& options, BakeResult first, CutChoice cuts, bool refit,
-                    bool moveDirections, SunAngles angles);
+                    const BakeOptions& options, BakeResult first, CutChoice cuts,
+                    const FinishOptions& finish);
 
 }  // namespace probelights

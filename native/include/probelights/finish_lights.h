@@ -11,14 +11,23 @@
 
 namespace probelights {
 
-// The refit (colours, and directions if asked) and the sun angles; with both, the colours are solved again
+// How a bake's lights are finished: their sun angles (sun_angles.h), then the irradiance refit (refit.h).
+struct FinishOptions {
+  SunAngles angles = SunAngles::Spread;
+  bool refit = false;           // up to kMaxRefitLights lights: more are finished without it
+  bool moveDirections = false;  // the refit also moves the lights' directions
+  // Whether `lights` lights are refit: the one rule of the refit's limit (a bake says so in a note).
+  bool refits(std::size_t lights) const { return refit && lights <= kMaxRefitLights; }
+};
+
+// The sun angles, then the refit (colours, and directions if asked); with both, the colours are solved again
 // for the fitted angles. `energyShift` (if given): the lights' total rgb after / before - 1.
-std::vector<Light> finishLights(const Evaluator& evaluator, std::vector<Light> lights, bool refit,
-                                bool moveDirections, SunAngles angles, double* energyShift = nullptr);
+std::vector<Light> finishLights(const Evaluator& evaluator, std::vector<Light> lights,
+                                const FinishOptions& finish, double* energyShift = nullptr);
 
 // finishLights after its first step, the angles (applySunAngles; `fitted`: what it returned), for a caller
 // that judged the angled lights before finishing them (cut_choice.h).
 std::vector<Light> finishAngled(const Evaluator& evaluator, std::vector<Light> lights, bool fitted,
-                                bool refit, bool moveDirections, SunAngles angles, double* energyShift);
+                                const FinishOptions& finish, double* energyShift);
 
 }  // namespace probelights
