@@ -13,8 +13,9 @@
 
 #include "probelights/image_file.h"
 #include "probelights/sh_sampler.h"
-#include "probelights/sh_variance.h"
 #include "probelights/spherical_harmonics.h"
+#include "probelights_reference/offset_until_positive.h"
+#include "probelights_reference/sh_variance.h"
 
 namespace {
 
@@ -44,12 +45,12 @@ void BM_IrradianceVariance(benchmark::State& state) {
   }
   const Probe& p = probe(index);
   std::vector<double> c = projectProbe(p, bands).luminance();
-  ShSampler berger(bands, c, epsilon, 8), offset(bands, offsetUntilPositive(bands, c), 0.0, 8);
-  EstimatorVariance u{}, o{}, b{};
+  ShSampler berger(bands, c, epsilon, 8), offset(bands, reference::offsetUntilPositive(bands, c), 0.0, 8);
+  reference::EstimatorVariance u{}, o{}, b{};
   for (auto _ : state) {
-    u = irradianceEstimatorVariance(p, normal, [](const Vec3&) { return 1 / (4 * kPi); });
-    o = irradianceEstimatorVariance(p, normal, [&](const Vec3& d) { return offset.pdf(d); });
-    b = irradianceEstimatorVariance(p, normal, [&](const Vec3& d) { return berger.pdf(d); });
+    u = reference::irradianceEstimatorVariance(p, normal, [](const Vec3&) { return 1 / (4 * kPi); });
+    o = reference::irradianceEstimatorVariance(p, normal, [&](const Vec3& d) { return offset.pdf(d); });
+    b = reference::irradianceEstimatorVariance(p, normal, [&](const Vec3& d) { return berger.pdf(d); });
   }
   const double e2 = u.irradiance * u.irradiance;
   state.counters["relvar_uniform"] = u.variance / e2;

@@ -62,22 +62,6 @@ std::array<double, 2> ShSampler::invert(const Vec3& direction) const {
   return warp_.invert(toSquare(direction));
 }
 
-std::vector<double> offsetUntilPositive(int bands, std::vector<double> c) {
-  // The minimum of the reconstruction over a fine grid of directions; adding -min to the constant term
-  // (Y_0^0 = 1 / sqrt(4 pi)) lifts it to >= 0 there.
-  double minimum = 0;
-  std::vector<double> y(shCount(bands));
-  for (int i = 0; i < 256; ++i)
-    for (int j = 0; j < 512; ++j) {
-      shBasis(bands, ShSampler::toSphere((i + 0.5) / 256, (j + 0.5) / 512), y);
-      double f = 0;
-      for (int k = 0; k < shCount(bands); ++k) f += c[k] * y[k];
-      minimum = std::min(minimum, f);
-    }
-  c[0] += -minimum * std::sqrt(4.0 * kPi) * 1.001;
-  return c;
-}
-
 std::vector<ShSampler::Sample> ShSampler::sampleSeeded(int count, std::uint64_t seed) const {
   if (count < 1) throw Error("asked for " + std::to_string(count) + " samples: ask for at least 1");
   std::mt19937_64 rng(seed);

@@ -13,7 +13,8 @@
 #include "chi2.h"
 #include "probelights/error.h"
 #include "probelights/image_file.h"
-#include "probelights/sh_variance.h"
+#include "probelights_reference/offset_until_positive.h"
+#include "probelights_reference/sh_variance.h"
 #include "test_probes.h"
 
 namespace probelights {
@@ -181,7 +182,7 @@ TEST(ShSampler, EpsilonZeroIsJaroszAndOneHalfIsUniform) {
 }
 
 TEST(ShSampler, OffsetRemedyIsPositiveButFlatter) {
-  std::vector<double> c = sunnyProbe(8), lifted = offsetUntilPositive(8, c);
+  std::vector<double> c = sunnyProbe(8), lifted = reference::offsetUntilPositive(8, c);
   EXPECT_GE(minimumOfReconstruction(8, lifted), 0.0);
   ShSampler berger(8, c, 0.01, 8), offset(8, lifted, 0.0, 8);
   Vec3 sun{0.023, 0.087, 0.996};
@@ -198,11 +199,12 @@ TEST(ShSampler, ImportanceSamplingIrradianceBeatsUniformAndOffset) {
   Probe probe = loadProbe(PROBELIGHTS_BUNDLED_PROBE);
   const int bands = 8;
   std::vector<double> c = projectProbe(probe, bands).luminance();
-  ShSampler berger(bands, c, 0.1, 8), offset(bands, offsetUntilPositive(bands, c), 0.0, 8);
+  ShSampler berger(bands, c, 0.1, 8), offset(bands, reference::offsetUntilPositive(bands, c), 0.0, 8);
   for (Vec3 n : {Vec3{0, 0, 1}, Vec3{1, 0, 0}, Vec3{0, -0.6, 0.8}}) {
-    auto uniform = irradianceEstimatorVariance(probe, n, [](const Vec3&) { return 1 / (4 * kPi); });
-    auto sh = irradianceEstimatorVariance(probe, n, [&](const Vec3& d) { return berger.pdf(d); });
-    auto off = irradianceEstimatorVariance(probe, n, [&](const Vec3& d) { return offset.pdf(d); });
+    auto uniform =
+        reference::irradianceEstimatorVariance(probe, n, [](const Vec3&) { return 1 / (4 * kPi); });
+    auto sh = reference::irradianceEstimatorVariance(probe, n, [&](const Vec3& d) { return berger.pdf(d); });
+    auto off = reference::irradianceEstimatorVariance(probe, n, [&](const Vec3& d) { return offset.pdf(d); });
     EXPECT_NEAR(sh.irradiance, uniform.irradiance, 1e-12 * uniform.irradiance);
     EXPECT_LT(5 * sh.variance, uniform.variance) << n.x << n.y << n.z;  // measured 18-26x
     EXPECT_LT(2 * sh.variance, off.variance) << n.x << n.y << n.z;      // measured 2.5-3.5x

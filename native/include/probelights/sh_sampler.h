@@ -46,9 +46,4 @@ class ShSampler {
   HierarchicalWarp warp_;
 };
 
-// The Rec. 709 luminance SH of a probe, offset until the reconstruction is nowhere negative (Jarosz et al.'s
-// remedy, which Berger argues against: it flattens the distribution). For comparisons in tests and
-// benchmarks.
-std::vector<double> offsetUntilPositive(int bands, std::vector<double> coefficients);
-
 }  // namespace probelights

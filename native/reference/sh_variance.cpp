@@ -1,9 +1,9 @@
-#include "probelights/sh_variance.h"
+#include "probelights_reference/sh_variance.h"
 
 #include <algorithm>
 #include <vector>
 
-namespace probelights {
+namespace probelights::reference {
 
 EstimatorVariance irradianceEstimatorVariance(const Probe& probe, const Vec3& normal,
                                               const std::function<double(const Vec3&)>& pdf) {
@@ -24,4 +24,4 @@ EstimatorVariance irradianceEstimatorVariance(const Probe& probe, const Vec3& no
   return {e, e2 - e * e};
 }
 
-}  // namespace probelights
+}  // namespace probelights::reference
