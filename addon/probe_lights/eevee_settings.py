@@ -25,13 +25,10 @@ from .remembered import put_back, set_remembering
 BEFORE_KEY = "probe_lights_eevee_before"  # on the scene: the settings the offer replaced
 
 # Pages one sun needs at shadow resolution scale 1, by its elevation: EEVEE Next covers what the sun sees of the
-# scene, the more the higher the sun. 8 suns over the render test's sphere and plane at elevations 3, 10, 20, 40,
-# 60, 85 degrees took 50, 63, 83, 118, 151, 164 pages each (bpy 4.5.15, whatever their angle from 0 to 40 degrees):
-# 44 + 121 sin(elevation) within 4 %. (A count of 107 per sun, measured on 64 spread suns, left 16 sharp suns
-# around a high sun 30 % short: "Shadow buffer full".)
+# scene, the more the higher the sun (the fit and its measurements: docs/decisions.md).
 PAGES_AT_HORIZON, PAGES_PER_SINE = 44.0, 121.0
-# The share of those pages a sun takes at a lower shadow resolution scale (64 suns: 107, 12, 7 pages each at
-# 1, 0.5, 0.25, alike in Blender 4.5 and 5.2; docs/eevee.md); a scale between two rows costs what the row above does.
+# The share of those pages a sun takes at a lower shadow resolution scale (docs/eevee.md); a scale between two rows
+# costs what the row above does.
 RESOLUTION_SHARE = ((1.0, 1.0), (0.5, 12 / 107), (0.25, 7 / 107))
 PAGES_PER_MB = 4  # the 512 MB pool holds 2,048 pages
 MARGIN = 1.1  # the page count varies a little with the view

@@ -236,7 +236,7 @@ def make_lights(scene, world, baked, source, light_type=light_kinds.DEFAULT, dis
         if hasattr(data, "diffuse_factor"):
             data.diffuse_factor = data.specular_factor = 1.0
         # Transmission goes with reflections: glass refracts the world, which lamps seen through it would light
-        # again (a glass sphere 8-12 % too bright; world_mix.py)
+        # again (world_mix.py; docs/decisions.md)
         rays = [r for r, lit in zip(LAMP_RAYS, (lights_diffuse, lights_glossy, lights_glossy, lights_diffuse)) if lit]
         obj[RAYS_KEY] = ",".join(rays)
         _show_to(obj, LAMP_RAYS if is_eevee(scene.render.engine) else rays)
@@ -247,7 +247,7 @@ def make_lights(scene, world, baked, source, light_type=light_kinds.DEFAULT, dis
         # the two shares do not add up to the diffuse closures' light. Without MIS only the lamp's own samples
         # reach it (docs/glossy.md: closer to the world's render on glossy materials in 4.5, shorter renders).
         # Cycles 3.x has no light tree: it picks among the lamps nearly uniformly and MIS keeps its many-lamp
-        # renders from getting noisier (noon_grass, 256 suns: 1.41 % from the world with MIS, 2.41 % without).
+        # renders from getting noisier (docs/decisions.md).
         if hasattr(data, "cycles"):  # not when the Cycles add-on is disabled
             data.cycles.use_multiple_importance_sampling = bool(lights_glossy) or not light_tree
         objects.append(obj)

@@ -25,9 +25,7 @@ SunProfile parseSunProfile(const std::string& name);  // throws Error naming the
 //   Free: as wide as the profile draws;
 //   AboveHorizon: never across the horizon (half-angle <= |elevation|: a sun above it stays above, one
 //     below it below). EEVEE (4.2+) darkens a whole sun by the part of its cone below the horizon of the
-//     floor it lights (it shadows that part, where Cycles gives it the floor's cosine, 0): a sun at 10
-//     degrees rendered 0.85 of Cycles' light at an angle of 45 degrees and 0.74 at 90, and within 0.3 %
-//     once its cone stayed above (docs/eevee.md).
+//     floor it lights (it shadows that part, where Cycles gives it the floor's cosine, 0; docs/decisions.md).
 enum class SunCones { Free, AboveHorizon };
 std::string toString(SunCones cones);             // "free", "above-horizon"
 SunCones parseSunCones(const std::string& name);  // throws Error naming the choices

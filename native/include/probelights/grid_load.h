@@ -1,6 +1,6 @@
 // Reading a probe straight into its working grid, band by band, for bakes that need nothing else of it: the
-// image is never held whole, so a bake's peak memory is the grid and two bands (at 8K auto ~220 MB + 50 MB
-// instead of the 402 MB image + the grid), and the grid is built while the next band decodes. In
+// image is never held whole, so a bake's peak memory is the grid and two bands instead of the image and the
+// grid (docs/decisions.md), and the grid is built while the next band decodes. In
 // probelights_io (it reads files with OpenImageIO).
 #pragma once
 

@@ -88,10 +88,10 @@ class MomentTable {
   }
 
   // Whether the table keeps summed-area tables. A full-resolution table of a lat-long probe wider than
-  // kTablesUpToWidth keeps none (they would be 40 bytes a pixel: 1.3 GB at 8K, 5.4 GB at 16K): it keeps a
+  // kTablesUpToWidth keeps none (they would be 40 bytes a pixel: 1.3 GB at 8K): it keeps a
   // view of the probe's pixels (which must outlive it) and sums a region's columns and rows from them when a
   // cut rule sweeps it (RegionSweep, partition.h): a pass over the pixels per round of cuts instead of one
-  // to build the tables, the same regions. Up to 4K the tables (335 MB at 4K) are faster.
+  // to build the tables, the same regions. Up to 4K the tables are faster (docs/decisions.md).
   static constexpr int kTablesUpToWidth = 4096;
   bool hasTables() const { return !pixels_; }
   // w, w dx, w dy, w dz and lit pixels, summed.
