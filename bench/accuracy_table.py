@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The accuracy table of docs/accuracy.md: every probe in ../shared/hdri and Blender's studiolights, each method at 16 and 64
+"""The accuracy table of docs/results/accuracy.md: every probe in ../shared/hdri and Blender's studiolights, each method at 16 and 64
 lights with and without the irradiance refit, through `probelights tradeoff`; prints a Markdown table of the best
 (lowest diffuse error) per probe and count, and writes the plot of the bundled probe to docs/.
 

@@ -1,4 +1,4 @@
-"""docs/eevee.md's table of the suns' cones: EEVEE and Cycles with 16 lamps (Lamps take: All of the light) whose
+"""docs/results/eevee.md's table of the suns' cones: EEVEE and Cycles with 16 lamps (Lamps take: All of the light) whose
 fitted cones may cross the horizon (sun_cones "free", the add-on's bake in Cycles) or not ("above-horizon", its bake
 in EEVEE: blender_caps.sun_cones), each against Cycles lit by the world. Same scene and measure as
 bench_eevee_residual.py (the diffuse sphere over a plane, 160x120, direct light only, EEVEE 32 samples, Cycles 256).

@@ -1,4 +1,4 @@
-"""docs/eevee.md: how much of EEVEE's error from a world is its spherical harmonics, no render needed (issue 30).
+"""docs/results/eevee.md: how much of EEVEE's error from a world is its spherical harmonics, no render needed (issue 30).
 
 EEVEE (4.2 and newer) lights a diffuse surface from the world through the world's first two bands of spherical
 harmonics only (Blender's eevee_lightprobe_eval_lib.glsl: spherical_harmonics_evaluate_lambert on a

@@ -1,4 +1,4 @@
-"""docs/eevee.md's split of (c)'s difference from Cycles into its two parts (issue 30): the add-on's lamps of the
+"""docs/results/eevee.md's split of (c)'s difference from Cycles into its two parts (issue 30): the add-on's lamps of the
 bright sources and the residual world. Same scene and reference as bench_eevee_residual.py (the diffuse sphere over
 a plane, Cycles lit by the world, direct light only); for each probe it renders
   ref  Cycles lit by the world,          a   EEVEE lit by the world, its sun extraction at its default,

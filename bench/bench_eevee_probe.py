@@ -1,4 +1,4 @@
-"""docs/eevee.md's table of issue 54: EEVEE with the baked lamps and a baked light probe volume, against Cycles with
+"""docs/results/eevee.md's table of issue 54: EEVEE with the baked lamps and a baked light probe volume, against Cycles with
 4 bounces, on the bundled probe and ../shared/hdri's. The scene is the render test's diffuse sphere over a plane
 (harness/render_scene.py) with a volume probe around both (8 x 8 x 4 m); 64 suns with the add-on's defaults, baked
 in EEVEE; the probe baked by the add-on (probe_volumes.py). Each column is render_scene.block_difference's (8x8

@@ -1,4 +1,4 @@
-"""docs/eevee.md's table of issue 30: what comes closest to Cycles lit by the world, in EEVEE and in Cycles, on
+"""docs/results/eevee.md's table of issue 30: what comes closest to Cycles lit by the world, in EEVEE and in Cycles, on
 every probe the tests have (the bundled one, ../shared/hdri's, Blender's own studio lights: 15). The scene is the
 render test's diffuse sphere over a plane (harness/render_scene.py); the reference is Cycles lit by the world with
 direct light only (EEVEE bounces none without baked light probes). Against it:

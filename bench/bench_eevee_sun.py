@@ -1,4 +1,4 @@
-"""docs/eevee.md's table of one sun lamp in EEVEE against Cycles, by its elevation and angle: a sun of strength 1
+"""docs/results/eevee.md's table of one sun lamp in EEVEE against Cycles, by its elevation and angle: a sun of strength 1
 over the diffuse sphere and plane (harness/render_scene.py, 160x120, a black world, direct light only; EEVEE 64
 samples, Cycles 256), and each cell the EEVEE render's light over the Cycles render's (the sum over the object
 pixels). With "noplane" the plane is hidden; with "noshadow" the sun casts none.

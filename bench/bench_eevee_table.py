@@ -1,4 +1,4 @@
-"""docs/eevee.md's table: EEVEE with the baked lamps against EEVEE with its own world lighting (and its sun
+"""docs/results/eevee.md's table: EEVEE with the baked lamps against EEVEE with its own world lighting (and its sun
 extraction), each against Cycles lit by the world, on the probes the tests have (the bundled noon_grass and
 Blender's own studio lights). The scene is the render test's sphere over a plane (harness/render_scene.py).
 Three cases of the lamps: baked in EEVEE (the pool fitted at the bake), baked under Cycles then rendered in EEVEE (fitted before

@@ -1,4 +1,4 @@
-"""docs/glossy.md's table: glossy materials lit by the add-on's lamps against the world, in Cycles, on the bundled
+"""docs/results/glossy.md's table: glossy materials lit by the add-on's lamps against the world, in Cycles, on the bundled
 probe and every ../shared probe. The scene is render_scene.glossy_spheres: Blender's default Principled BSDF at
 roughness 0.2, 0.5 and 1.0, one sphere over its own ground each, side by side; each third of the picture is
 compared with the world's render (render_scene.block_difference: 8x8 blocks of lit pixels, mean

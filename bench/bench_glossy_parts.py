@@ -1,4 +1,4 @@
-"""docs/glossy.md's split of the default bake's difference on glossy materials (issue 30): how much of it Cycles makes
+"""docs/results/glossy.md's split of the default bake's difference on glossy materials (issue 30): how much of it Cycles makes
 of the world's own light split by ray visibility, with no lamps at all. The scene is bench_glossy.py's (Blender's
 default Principled BSDF at roughness 0.2, 0.5 and 1.0, render_scene.glossy_spheres); for each probe it renders
   full  the world lit by every ray;                 noise  the same with another seed;

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""probelights next to its peers, whole processes, and docs/peers.md written from the figures.
+"""probelights next to its peers, whole processes, and docs/results/peers.md written from the figures.
 
     python3 bench/bench_peers.py MOBILEAR ENVTOOLS [--probe 1K.hdr] [--runs 9] [--write]
 
@@ -80,7 +80,7 @@ def main():
     parser.add_argument("envtools")
     parser.add_argument("--probe", default=str(ROOT / "assets" / "noon_grass_1k.hdr"))
     parser.add_argument("--runs", type=int, default=9)
-    parser.add_argument("--write", action="store_true", help="write docs/peers.md")
+    parser.add_argument("--write", action="store_true", help="write docs/results/peers.md")
     args = parser.parse_args()
     ours = ROOT / "build" / "bin" / "probelights"
     if not ours.exists():
@@ -135,8 +135,8 @@ the C and C++ runtimes; `probelights --help` takes 10-20 ms), computes exact sol
 prints one line a light; envtools links Debian's OpenImageIO 2.4, whose 261 libraries take about a quarter of
 a second to load before main().
 """
-        (ROOT / "docs" / "peers.md").write_text(page)
-        print("wrote docs/peers.md")
+        (ROOT / "docs" / "results" / "peers.md").write_text(page)
+        print("wrote docs/results/peers.md")
 
 
 if __name__ == "__main__":

@@ -2,7 +2,7 @@
 render_scene.ground_under_sphere) rendered by Cycles lit by the world and by 16 and 64 baked suns, for each
 shadow choice (Hard: points; Region spread: the angle before issue 9; Fitted; Fitted with the refit): the rendered
 relative RMS difference beside the add-on's estimate of it, the renders' noise, and the difference with both
-renders' noise taken out (docs/shadows.md; for every probe: bench/bench_shadow_table.sh).
+renders' noise taken out (docs/results/shadows.md; for every probe: bench/bench_shadow_table.sh).
 
     tests/blender/run.sh ~/.cache/probelights/bpy-4.5.15/bin/python bench/bench_shadow_estimate.py \\
         build/probe_lights-0.1.0-linux_x64.zip ../shared [PROBE] [SAMPLES]

@@ -1,11 +1,11 @@
-"""The tables of docs/shadows.md of Fitted + Refit renders from bench/bench_shadow_table.sh run with
+"""The tables of docs/results/shadows.md of Fitted + Refit renders from bench/bench_shadow_table.sh run with
 PROBELIGHTS_SHADOW_CHOICES=FIT+refit (one file per Blender).
 
     PROBELIGHTS_SHADOW_CHOICES=FIT+refit bash bench/bench_shadow_table.sh BLENDER > refit45.txt
-    python3 bench/refit_table.py docs/shadows.md refit45.txt refit34.txt    # before -> now, a row per probe and Blender
+    python3 bench/refit_table.py docs/results/shadows.md refit45.txt refit34.txt    # before -> now, a row per probe and Blender
     python3 bench/refit_table.py --bar refit45.txt refit34.txt        # issue 9's bar: a row per probe
 
-The first beside the figures docs/shadows.md's big shadow table holds for the same choice (its last column); the
+The first beside the figures docs/results/shadows.md's big shadow table holds for the same choice (its last column); the
 second with the renders less both noises and the estimates, one column pair per Blender. Either way the worst
 figures, the probes over issue 9's bar (16 suns within 2 %, 64 within 0.7 %) and the estimates outside its bound
 go to stderr.

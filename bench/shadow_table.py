@@ -1,4 +1,4 @@
-"""The before/after shadow table of docs/shadows.md from bench/bench_shadow_table.sh's output (one file per Blender):
+"""The before/after shadow table of docs/results/shadows.md from bench/bench_shadow_table.sh's output (one file per Blender):
 
     python3 bench/shadow_table.py table45.txt table34.txt
 

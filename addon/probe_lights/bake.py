@@ -92,7 +92,7 @@ def bake_world(context, settings, progress=lambda fraction: None, rendered=None,
     extra = {"source_level": settings.source_level} if sources else {}
     # The core's recipe for this engine (request.cpp: presets), changed by the panel's settings; without the
     # refit each light sits at its region's energy centroid (energy^2 leans towards the brightest light, which
-    # only the refit's colours make up for: docs/shadows.md).
+    # only the refit's colours make up for: docs/results/shadows.md).
     baked = native.bake(pixels, projection=projection, preset=preset(scene.render.engine, bpy.app.version),
                         method=cut_method(settings.method), lights=settings.count,
                         resolution=settings.resolution, max_error=max_error, nonfinite=settings.non_finite,

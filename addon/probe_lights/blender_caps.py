@@ -5,7 +5,7 @@ are in the docs each answer names."""
 EEVEE_ENGINES = frozenset({"BLENDER_EEVEE", "BLENDER_EEVEE_NEXT"})  # EEVEE's name before 4.2 and in 4.2-4.x
 EEVEE_NEXT_SINCE = (4, 2, 0)  # one shadow pool for every light, ray visibility honoured, light probe volumes
 NORMALIZED_SUN_SINCE = (4, 0, 0)  # measured: 3.4 disc; 4.5, 5.0, 5.2 normalized (3.5 to 4.4 not measured)
-LIGHT_TREE_SINCE = (4, 0, 0)  # Cycles' light tree: more lamps render slower, not noisier (docs/renders.md)
+LIGHT_TREE_SINCE = (4, 0, 0)  # Cycles' light tree: more lamps render slower, not noisier (docs/results/renders.md)
 WORLD_NODES_ALWAYS_SINCE = (5, 0, 0)  # World.use_nodes deprecated; Cycles 5.0 renders use_nodes False by its nodes
 
 
@@ -27,7 +27,7 @@ def eevee_next(engine, blender_version):
 def sun_cones(engine, blender_version):
     """How wide the suns' cones may be for a bake in that engine (the core's sun_cones, cone.h). EEVEE (4.2+)
     darkens a whole sun by the part of its cone below the floor's horizon, so a bake in EEVEE keeps every cone
-    above it; in Cycles free cones render closer to the world (docs/eevee.md, bench/bench_eevee_cones.py), so a bake
+    above it; in Cycles free cones render closer to the world (docs/results/eevee.md, bench/bench_eevee_cones.py), so a bake
     in any other engine leaves them free."""
     return "above-horizon" if eevee_next(engine, blender_version) else "free"
 

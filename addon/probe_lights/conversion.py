@@ -1,7 +1,7 @@
 """From baked lights to Blender light parameters: units and orientations, no bpy.
 
 Units per Blender version, from Cycles renders of a white diffuse patch (tests/blender/test_render.py derives them
-from the renders and checks these models in each version; the figures are in docs/renders.md, "Light units"):
+from the renders and checks these models in each version; the figures are in docs/results/renders.md, "Light units"):
   - a sun lamp of strength S and angle 0 gives irradiance S (W/m^2) on a surface facing it, so a light's rgb (the
     sum of L dOmega over its region: the irradiance it gives a facing surface) is sun colour x strength;
   - a sun of angle 2a: Blender 3.4's Cycles samples a disc of radius tan(a) at unit distance with pdf

@@ -3,7 +3,7 @@
 Cycles' default indirect clamp (10) cuts the bright bounce paths a sun makes, so bounce light under baked suns
 renders darker than under the world; Blender 4.0+ picks among many lamps with its light tree (3.x has none: many
 lamps get noisy, render_cost.py). The panel says which of the scene's settings cost the lamps light or noise
-(cycles_clamp.json, written by bench/bench_cycles_settings.py; docs/renders.md) and offers one click that
+(cycles_clamp.json, written by bench/bench_cycles_settings.py; docs/results/renders.md) and offers one click that
 sets them; the values it replaced are kept on the scene and put back by Restore world (when no baked world of the
 scene is left).
 """

@@ -4,14 +4,14 @@ EEVEE Next keeps every shadow in one pool of pages (Render > Performance > Shado
 pages). Each sun takes 50 to 165 pages whatever the image size (the higher the sun, the more), so past 12 to 40
 suns the pool is full; EEVEE then drops pages by thread timing, and the shadows (and the picture's brightness)
 change from one render to the next. Halving the shadow resolution (Shadows > Resolution) takes a sun to about a
-tenth of the pages and changes the picture by little (docs/eevee.md). The fit is the smallest pool that holds the
+tenth of the pages and changes the picture by little (docs/results/eevee.md). The fit is the smallest pool that holds the
 suns' pages (and half or quarter resolution when even the largest pool cannot); the values it replaced are kept
 on the scene and put back by Restore world.
 
 The fit follows the scene, not the click: it is made by itself whenever the scene is to render in EEVEE with baked
 suns the pool cannot hold (before every render, including `blender -b file.blend -E BLENDER_EEVEE_NEXT -f 1`; when
 the engine changes to EEVEE; when a file opens in EEVEE), because a full pool is never what the user wants: its
-renders are farther from Cycles and differ from one render to the next (docs/eevee.md). The panel says it was
+renders are farther from Cycles and differ from one render to the next (docs/results/eevee.md). The panel says it was
 done; Restore world undoes it.
 """
 
@@ -27,7 +27,7 @@ BEFORE_KEY = "probe_lights_eevee_before"  # on the scene: the settings the offer
 # Pages one sun needs at shadow resolution scale 1, by its elevation: EEVEE Next covers what the sun sees of the
 # scene, the more the higher the sun (the fit and its measurements: docs/decisions.md).
 PAGES_AT_HORIZON, PAGES_PER_SINE = 44.0, 121.0
-# The share of those pages a sun takes at a lower shadow resolution scale (docs/eevee.md); a scale between two rows
+# The share of those pages a sun takes at a lower shadow resolution scale (docs/results/eevee.md); a scale between two rows
 # costs what the row above does.
 RESOLUTION_SHARE = ((1.0, 1.0), (0.5, 12 / 107), (0.25, 7 / 107))
 PAGES_PER_MB = 4  # the 512 MB pool holds 2,048 pages

@@ -245,7 +245,7 @@ def make_lights(scene, world, baked, source, light_type=light_kinds.DEFAULT, dis
         # evaluates closure by closure against the lamp's visibility (the glossy closures left out), and rays
         # bounced off the surface, labelled by the one closure they sampled but carrying the whole BSDF's value:
         # the two shares do not add up to the diffuse closures' light. Without MIS only the lamp's own samples
-        # reach it (docs/glossy.md: closer to the world's render on glossy materials in 4.5, shorter renders).
+        # reach it (docs/results/glossy.md: closer to the world's render on glossy materials in 4.5, shorter renders).
         # Cycles 3.x has no light tree: it picks among the lamps nearly uniformly and MIS keeps its many-lamp
         # renders from getting noisier (docs/decisions.md).
         if hasattr(data, "cycles"):  # not when the Cycles add-on is disabled

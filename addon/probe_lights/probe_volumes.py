@@ -10,7 +10,7 @@ drops pages, reports "Shadow buffer full" (an error for a script) and bakes boun
 bake() bakes the probes for the lamps as they are when the largest pool holds their shadows; otherwise the
 bake sees fewer suns carrying the same light: the brightest suns, each with the light of the suns nearest to it
 in direction. Bounce light is smooth (a volume probe keeps two bands of spherical harmonics a point), so the
-merged suns bounce nearly the same light (docs/eevee.md measures it). The lamps and the pool are put back as
+merged suns bounce nearly the same light (docs/results/eevee.md measures it). The lamps and the pool are put back as
 they were when the bake ends, whether it succeeded or not.
 """
 

@@ -65,7 +65,7 @@ def sweet_spot(blender_version):
 
 def count_note(count, blender_version):
     """One line of advice when `count` suns is past the version's sweet spot, else ''. The figures behind it are
-    in MEASURED and docs/renders.md, not in the panel."""
+    in MEASURED and docs/results/renders.md, not in the panel."""
     best = sweet_spot(blender_version)
     if count <= best:
         return ""

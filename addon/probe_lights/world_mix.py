@@ -12,7 +12,7 @@ never by "Is Glossy Ray" / "Is Diffuse Ray" in the mix. Why: Cycles samples one 
 carries the whole BSDF's value on the ray, labelled with that closure, and evaluates the world for light sampling
 with no ray type at all; a mix that shows the world to glossy rays only therefore gives a glossy material the
 wrong share of it. Measured on 7 probes (bpy 4.5.15, Principled roughness 0.2-1.0, 64 lamps; bench/bench_glossy.py,
-docs/glossy.md): 0.7-5.2 % from the world's render through the mix, 0.3-2.2 % through the visibility, which
+docs/results/glossy.md): 0.7-5.2 % from the world's render through the mix, 0.3-2.2 % through the visibility, which
 Cycles applies per closure when it samples the world as a light. Transmission goes with reflections: glass
 refracts the world, and lamps lighting it through transmission too made a glass sphere 8-12 % too bright (0.4-0.6
 % with the world alone lighting it; tests/blender/test_render.py).

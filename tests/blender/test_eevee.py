@@ -171,7 +171,7 @@ def test_the_panels_count_of_suns_gives_the_fit_their_elevations_give():
 def test_wide_suns_low_over_the_horizon_render_as_in_cycles():
     """A broad bright band low over the horizon (elevations 3-30 degrees), 4 lamps: their fitted cones would cross
     the horizon, and EEVEE darkens a sun by the part of its cone below the floor's horizon (a sun at 10 degrees:
-    0.85 of Cycles' light at an angle of 45 degrees, 0.74 at 90; docs/eevee.md). Baked in EEVEE, the add-on
+    0.85 of Cycles' light at an angle of 45 degrees, 0.74 at 90; docs/results/eevee.md). Baked in EEVEE, the add-on
     keeps every cone above the horizon (blender_caps.sun_cones), so the lamps light the sphere over the plane in
     EEVEE as they do in Cycles: measured in 4.5.15, with the cones free EEVEE gave 0.951 of Cycles' light on the
     lit blocks (6.8 % apart), kept above 1.009 (3.7 %: the rest is EEVEE's own). Lamps baked in Cycles keep free

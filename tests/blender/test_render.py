@@ -158,7 +158,7 @@ def test_glossy_materials_render_like_the_world():
       closures, so any split by effect is biased (world_mix.py); the world's ray visibility and the lamps without
       multiple importance sampling keep it at 0.3-2.4 % here in 4.5.15 (St. Peter's, 16 lamps, roughness 0.2, the
       worst), where a mix on Is Glossy Ray with the lamps' MIS on (the add-on before 2026-12-03) gave 0.7-5.2 % at
-      64 lamps and 2.6 % at 16 (bench/bench_glossy.py, docs/glossy.md);
+      64 lamps and 2.6 % at 16 (bench/bench_glossy.py, docs/results/glossy.md);
     - 64 lamps of the bright sources with the residual world, nothing split by effect: within the diffuse bound.
     On every probe of ../shared in the LTS bpy (PROBELIGHTS_GLOSSY_PROBES=all, tests/CMakeLists.txt), else on the
     bundled one (every probe in the newest too: bench/bench_glossy.py)."""

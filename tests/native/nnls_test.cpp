@@ -85,7 +85,8 @@ TEST(Nnls, StepsPastARoundingThatLandsAboveZeroInFewSteps) {
   // of the one before (nearly equal columns), and a smooth sky's irradiance. The step towards the free-set
   // solution can land a rounding above 0 on the variable that blocks it; unless that variable is forced out,
   // the step stays 0 and the method spins to its iteration bound (28,232 factorizations for the 53 lights of
-  // seed 109, 39,013 for the 63 of seed 159, and short of optimal; docs/accuracy.md: the refit's cost).
+  // seed 109, 39,013 for the 63 of seed 159, and short of optimal; docs/results/accuracy.md: the refit's
+  // cost).
   for (int seed : {109, 159, 7, 42}) {
     std::mt19937 rng(seed);
     std::normal_distribution<double> g;

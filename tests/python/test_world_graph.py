@@ -252,7 +252,7 @@ def test_render_cost_advice_follows_the_running_version():
     assert render_cost.measured_version((4, 2, 0)) == (4, 5, 15) and render_cost.measured_version((5, 1, 0)) == (5, 0, 1)
     assert render_cost.measured_version((3, 6, 0)) == (3, 4, 1) and render_cost.measured_version((5, 4, 0)) == (5, 3, 0)
     old, new = render_cost.count_note(128, (3, 4, 1)), render_cost.count_note(256, (4, 5, 15))
-    # Advice, not figures (those are in render_cost.MEASURED and docs/renders.md): noise without a light tree,
+    # Advice, not figures (those are in render_cost.MEASURED and docs/results/renders.md): noise without a light tree,
     # time with one.
     assert old == "More than 32 suns: noisier renders, no closer in Cycles 3.4", old
     assert new == "More than 32 suns: slower renders, no closer in Cycles 4.5", new

@@ -12,7 +12,7 @@
 namespace probelights {
 
 // How radiance spreads over a sun's cone, per renderer (checked in each Blender by
-// tests/blender/test_render.py; docs/renders.md):
+// tests/blender/test_render.py; docs/results/renders.md):
 //   Cone: uniform (Cycles 4.0 and later: a uniform cone, normalized so a facing surface gets the strength);
 //   TangentDisc: Cycles 3.x draws a sun of angle 2a as a disc of radius tan(a) at unit distance, uniform over
 //     the disc, so radiance grows as 1 / cos^3 of the angle from the axis (a facing surface gets

@@ -108,7 +108,8 @@ class Evaluator {
   // keep an angle fit from trading shading for shadow) and, with shadows, the fit ground points; `refit`: the
   // refit's 32 x 32 ground points instead of the 20 x 20 (when the evaluator has them). The refit solves for
   // three colours a light, so it fits on 1024 points: on 400 it overfit them (its estimated shadow error
-  // doubled on some probes), while the angle fit alone, one number a light, keeps the 400 (docs/shadows.md).
+  // doubled on some probes), while the angle fit alone, one number a light, keeps the 400
+  // (docs/results/shadows.md).
   std::vector<Receiver> fitReceivers(bool refit = false) const;
   double kernel(const Light& light, const Receiver& r) const;
   // The fits' objective: the weighted squared residual of the lights' luminance on the receivers (each set's

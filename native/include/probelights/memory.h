@@ -1,5 +1,5 @@
 // Fresh memory: the first write to each page of a new allocation makes the kernel map it, which for big pixel
-// buffers and tables costs as much as reading the image (docs/accuracy.md: BM_FirstTouch).
+// buffers and tables costs as much as reading the image (docs/results/accuracy.md: BM_FirstTouch).
 #pragma once
 
 #include <cstddef>

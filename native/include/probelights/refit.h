@@ -20,7 +20,8 @@ namespace probelights {
 inline constexpr std::size_t kMaxRefitLights = 256;
 // moveDirections: also moves each light's direction (coordinate descent: steps of 4, 2, 1 and 0.5 degrees
 // along two tangent axes, kept when the fit improves; three rounds up to 16 lights, two above, each followed
-// by the NNLS colours): lower diffuse error at few lights, shadows unchanged or better (docs/shadows.md).
+// by the NNLS colours): lower diffuse error at few lights, shadows unchanged or better
+// (docs/results/shadows.md).
 std::vector<Light> refitIrradiance(const Evaluator& evaluator, const std::vector<Light>& lights,
                                    double* energyShift = nullptr, bool moveDirections = false);
 

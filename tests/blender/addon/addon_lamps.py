@@ -34,7 +34,7 @@ def test_rebake_replaces_only_its_own_lights():
 def test_lamps_light_the_effects_of_their_split_and_sample_by_importance_only_with_reflections():
     """Which effects the lamps light (Cycles' ray visibility; in EEVEE every effect) and whether Cycles reaches them
     by multiple importance sampling: off unless they light reflections, where Cycles has a light tree (3.5+;
-    docs/glossy.md)."""
+    docs/results/glossy.md)."""
     harness.empty_scene()
     tree = hasattr(bpy.context.scene.cycles, "use_light_tree")
     bright_spot_world((64, 32))
