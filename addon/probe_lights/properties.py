@@ -1,17 +1,17 @@
 """Settings the panels show (per scene) and what the last bake measured."""
 
+import json
+import os
+
 import bpy
 from bpy.props import BoolProperty, CollectionProperty, EnumProperty, FloatProperty, IntProperty, StringProperty
 
 from . import light_kinds
 
-METHODS = [("auto", "Auto", "Variance minimization and median cut: at 16 lights or fewer each fitted and the lights "
-                            "that fit the world's light better kept; above, each started and the better fitted alone"),
-           ("both", "Both cuts", "Variance minimization and median cut, each fitted, and the lights that fit the "
-                                 "world's light better kept (a second fit: slower)"),
-           ("variance", "Variance minimization", "Cut where the light's spread is least (Viriyothai & Debevec 2009)"),
-           ("median-cut", "Median cut", "Equal-energy regions (Debevec 2005)"),
-           ("sh", "Spherical harmonics", "Cells of equal SH energy by hierarchical warping (Jarosz 2009, Berger 2011)")]
+# The menu of methods, the core's (methodMenu): written into methods.json by scripts/addon_methods.py, since the
+# add-on registers before its native module loads.
+with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "methods.json")) as _f:
+    METHODS = [tuple(m) for m in json.load(_f)["methods"]]
 LIGHT_TYPES = light_kinds.enum_items()
 # The suns' angles (the core's sun_angles: fit, spread, points).
 SHADOWS = [("FIT", "Fitted", "Soft shadows: each sun's angle chosen so its shadow matches the probe's light (the "

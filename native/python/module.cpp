@@ -8,6 +8,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include "probelights/cut_choice.h"
 #include "probelights/memory.h"
 #include "probelights/refit.h"
 #include "shell.h"
@@ -57,6 +58,10 @@ PYBIND11_MODULE(_probelights, m) {
   m.attr("__version__") = PROBELIGHTS_VERSION;
   m.attr("max_refit_lights") = kMaxRefitLights;  // the most lights a bake with refit=True takes
   m.attr("methods") = methodNames();             // every placement method's name, as method= takes it
+  // A menu's choices of method (cut_choice.h): (name, label, help), the cut choices auto and both first.
+  py::list menu;
+  for (const MethodChoice& c : methodMenu()) menu.append(py::make_tuple(c.name, c.label, c.help));
+  m.attr("method_menu") = menu;
   // "full": reads files with OpenImageIO (bake_file); "pixels": the portable build inside the Blender add-on,
   // which links nothing but the C library and takes pixels only.
   m.attr("build") = PROBELIGHTS_MODULE_IO ? "full" : "pixels";

@@ -15,6 +15,24 @@ constexpr NameTable<CutChoice, 3> kCutChoices{
 }  // namespace
 
 std::string toString(CutChoice cuts) { return std::string(nameOf(kCutChoices, cuts)); }
+
+std::vector<MethodChoice> methodMenu() {
+  std::vector<MethodChoice> menu{
+      {"auto", "Auto",
+       "Variance minimization and median cut: at " + std::to_string(kBothFinishedUpTo) +
+           " lights or fewer each fitted and the lights that fit the world's light better kept; above, each "
+           "started and the better fitted alone"},
+      {"both", "Both cuts",
+       "Variance minimization and median cut, each fitted, and the lights that fit the world's light better "
+       "kept (a second fit: slower)"}};
+  for (const PlacementMethod& m : placementMethods()) {
+    std::string label = m.label;
+    if (!label.empty() && label[0] >= 'a' && label[0] <= 'z')
+      label[0] = static_cast<char>(label[0] - 'a' + 'A');
+    menu.push_back({m.name, label, m.help});
+  }
+  return menu;
+}
 CutChoice parseCutChoice(const std::string& name) { return parseName(kCutChoices, "cuts", name); }
 
 ChosenCut chooseCut(const Probe& probe, const WorkingGrid& grid, const Evaluator& evaluator,

@@ -34,9 +34,27 @@ BakeResult shPlace(const Probe& probe, const BakeOptions& options) {
 }
 
 const std::vector<PlacementMethod> kPlacementMethods{
-    {Method::MedianCut, "median-cut", {"mediancut", "median"}, "median cut", medianCutRule, nullptr},
-    {Method::Variance, "variance", {"variance-minimization"}, "variance minimization", varianceRule, nullptr},
-    {Method::SphericalHarmonics, "sh", {"spherical-harmonics"}, "SH importance warping", nullptr, shPlace},
+    {Method::MedianCut,
+     "median-cut",
+     {"mediancut", "median"},
+     "median cut",
+     "Equal-energy regions (Debevec 2005)",
+     medianCutRule,
+     nullptr},
+    {Method::Variance,
+     "variance",
+     {"variance-minimization"},
+     "variance minimization",
+     "Cut where the light's spread is least (Viriyothai & Debevec 2009)",
+     varianceRule,
+     nullptr},
+    {Method::SphericalHarmonics,
+     "sh",
+     {"spherical-harmonics"},
+     "SH importance warping",
+     "Cells of equal SH energy by hierarchical warping (Jarosz 2009, Berger 2011)",
+     nullptr,
+     shPlace},
 };
 
 }  // namespace

@@ -33,15 +33,15 @@ def test_manifest_has_the_required_fields_and_matches_bl_info():
 
 def test_the_panel_offers_every_placement_method_the_core_registers():
     # The add-on registers before its native module loads (a Blender without a build for its Python still
-    # enables it), so properties.py lists the methods itself; this holds that list to the core's registry
-    # (native/src/methods.cpp), so a new method fails here until the panel offers it.
+    # enables it), so properties.py reads its menu of methods from methods.json, which scripts/addon_methods.py
+    # writes from the core's (methodMenu, cut_choice.h): a new method fails here until the file is written again.
+    import json
     import _probelights as pl
-    tree = ast.parse(open(os.path.join(ADDON, "properties.py")).read())
-    methods = next(node.value for node in tree.body if isinstance(node, ast.Assign)
-                   and any(getattr(t, "id", "") == "METHODS" for t in node.targets))
-    offered = [item[0] for item in ast.literal_eval(methods)]
-    assert offered[:2] == ["auto", "both"]  # the two cut choices, then the placement methods
-    assert sorted(offered[2:]) == sorted(pl.methods)  # the panel orders them its own way
+    written = json.load(open(os.path.join(ADDON, "methods.json")))["methods"]
+    assert [tuple(m) for m in written] == list(pl.method_menu), \
+        "methods.json is not the core's menu: PYTHONPATH=build/python python3 scripts/addon_methods.py"
+    offered = [m[0] for m in written]
+    assert offered[:2] == ["auto", "both"] and offered[2:] == list(pl.methods)
 
 
 def test_one_version_everywhere():

@@ -27,6 +27,14 @@ inline constexpr std::size_t kBothFinishedUpTo = 16;
 std::string toString(CutChoice cuts);
 CutChoice parseCutChoice(const std::string& name);  // throws Error naming the choices
 
+// The choices a menu of methods offers (the Blender add-on's, which lists them from this): the cut choices
+// that try both cuts (auto, both), then every registered method (placement.h), each a name as the options
+// take it, a label and what it does in one line.
+struct MethodChoice {
+  std::string name, label, help;
+};
+std::vector<MethodChoice> methodMenu();
+
 // The cut kept of a CutChoice other than one: its lights finished, a note saying which and why.
 struct ChosenCut {
   BakeResult bake;

@@ -77,6 +77,7 @@ struct PlacementMethod {
   std::string name;                  // what options call it: "variance"
   std::vector<std::string> aliases;  // other spellings accepted: "variance-minimization"
   std::string label;                 // for usage texts: "variance minimization"
+  std::string help;                  // what it does, one line (the add-on's menu tooltip)
   std::unique_ptr<CutRule> (*rule)(const Probe& probe) = nullptr;
   BakeResult (*place)(const Probe& probe, const BakeOptions& options) = nullptr;
 };
