@@ -12,6 +12,8 @@ build: str
 max_refit_lights: int
 """The most lights a bake with refit=True takes."""
 methods: list[str]
+# A menu's choices of method: (name, label, what it does), the cut choices 'auto' and 'both' first.
+method_menu: list[tuple[str, str, str]]
 """Every placement method's name, as method= takes it."""
 
 class Error(ValueError):
