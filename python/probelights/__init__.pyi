@@ -12,9 +12,9 @@ build: str
 max_refit_lights: int
 """The most lights a bake with refit=True takes."""
 methods: list[str]
-# A menu's choices of method: (name, label, what it does), the cut choices 'auto' and 'both' first.
-method_menu: list[tuple[str, str, str]]
 """Every placement method's name, as method= takes it."""
+method_menu: list[tuple[str, str, str]]
+"""A menu's choices of method: (name, label, what it does), the cut choices 'auto' and 'both' first."""
 
 class Error(ValueError):
     """A bad input or option: its message is one line, the command line's."""
