@@ -14,8 +14,8 @@ command line's. The same core runs as the `probelights` command and inside the B
 The native module is loaded on first use (the `probelights` command does not need it to start).
 """
 
-__all__ = ["Error", "bake", "bake_file", "bake_files", "build", "evaluate", "gltf", "max_refit_lights", "method_menu", "methods",
-           "release_memory", "sh_project", "sh_sample", "touch_pages", "tradeoff", "usd", "__version__"]
+__all__ = ["Error", "bake", "bake_file", "bake_files", "build", "evaluate", "gltf", "max_refit_lights", "method_menu",
+           "methods", "release_memory", "sh_project", "sh_sample", "touch_pages", "tradeoff", "usd", "__version__"]
 
 
 def __getattr__(name):
