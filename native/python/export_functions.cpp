@@ -32,12 +32,12 @@ std::string usdText(const py::dict& lights, const std::string& lightType, double
 void defineExport(py::module_& m) {
   m.def(
       "gltf", &gltfText, py::arg("lights"), py::kw_only(), py::arg("light_type") = "sun",
-      py::arg("distance") = 10.0,
+      py::arg("distance") = ExportOptions{}.distance,
       "glTF 2.0 text (KHR_lights_punctual, Y up) of a bake's lights (its result's 'lights'): suns in lux, or "
       "point lights `distance` metres out in candela, at 683 lm/W as Blender's glTF importer reads them.");
   m.def(
       "usd", &usdText, py::arg("lights"), py::kw_only(), py::arg("light_type") = "sun",
-      py::arg("distance") = 10.0, py::arg("reflections") = "", py::arg("residual") = "",
+      py::arg("distance") = ExportOptions{}.distance, py::arg("reflections") = "", py::arg("residual") = "",
       "USD text (usda, UsdLux, Z up, metres) of a bake's lights: DistantLights normalized, intensity in lux "
       "(the probe's values read as nits), or SphereLights `distance` metres out. reflections: an asset path "
       "(relative to where the file will be, './' or '../' first, or absolute) of the lat-long probe, shown "
