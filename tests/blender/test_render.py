@@ -160,17 +160,20 @@ def test_glossy_materials_render_like_the_world():
       worst), where a mix on Is Glossy Ray with the lamps' MIS on (the add-on before 2026-12-03) gave 0.7-5.2 % at
       64 lamps and 2.6 % at 16 (bench/bench_glossy.py, docs/results/glossy.md);
     - 64 lamps of the bright sources with the residual world, nothing split by effect: within the diffuse bound.
-    On every probe of ../shared in the LTS bpy (PROBELIGHTS_GLOSSY_PROBES=all, tests/CMakeLists.txt), else on the
-    bundled one (every probe in the newest too: bench/bench_glossy.py)."""
+    On the bundled probe; in the LTS bpy also on the two of ../shared farthest from the world (St. Peter's at night,
+    KernerEnv: PROBELIGHTS_GLOSSY_PROBES names them, tests/CMakeLists.txt; "all" takes every probe of ../shared;
+    every probe in every version: bench/bench_glossy.py, docs/results/glossy.md)."""
     if bpy.app.version < (4, 0, 0):
         print("  skipped: Blender %s's Principled BSDF is the one before 4.0" % bpy.app.version_string)
         return
     probes = [harness.BUNDLED_PROBE]
-    if os.environ.get("PROBELIGHTS_GLOSSY_PROBES") == "all":
+    wanted = os.environ.get("PROBELIGHTS_GLOSSY_PROBES", "").split()
+    if wanted:
         shared = os.path.join(ARGS.shared, "hdri") if ARGS.shared else ""
         if shared and os.path.isdir(shared):
-            probes += sorted(os.path.join(shared, f) for f in os.listdir(shared) if f.endswith((".hdr", ".exr"))
-                             and f != os.path.basename(harness.BUNDLED_PROBE))
+            names = sorted(f for f in os.listdir(shared) if f.endswith((".hdr", ".exr"))) if wanted == ["all"] \
+                else wanted
+            probes += [os.path.join(shared, f) for f in names if f != os.path.basename(harness.BUNDLED_PROBE)]
         else:
             print("  skipped: ../shared not found (its probes)")
     worst = {"ALL": 0.0, "SOURCES": 0.0}
