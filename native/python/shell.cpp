@@ -149,19 +149,26 @@ std::vector<Light> exportedLights(const py::dict& lights) {
 std::string optionText(const std::string& name, const std::string& takes, const py::handle& value) {
   if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "true" : "false";
   if (py::isinstance<py::str>(value)) return value.cast<std::string>();
-  if (py::hasattr(value, "__index__")) return py::str(py::int_(py::reinterpret_borrow<py::object>(value)));
-  if (py::isinstance<py::float_>(value) || py::hasattr(value, "__float__"))
-    return py::repr(py::float_(py::reinterpret_borrow<py::object>(value)));
-  if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
+  // A sequence (a list, a tuple, a range, a numpy array) of numbers or words: joined by commas.
+  const auto isSequence = [](const py::handle v) {
+    return PySequence_Check(v.ptr()) && !py::isinstance<py::str>(v) && !py::isinstance<py::bytes>(v);
+  };
+  const py::ssize_t n = isSequence(value) ? PySequence_Size(value.ptr()) : -1;
+  if (n < 0) PyErr_Clear();  // not a sequence, or one without a length (a 0-d numpy array): a number below
+  if (n >= 0) {
     std::string text;
-    for (const py::handle item : value) {
-      if (py::isinstance<py::list>(item) || py::isinstance<py::tuple>(item))
-        throw Error(name + " takes " + takes + ", got a list in a list");
+    const py::sequence items = py::reinterpret_borrow<py::sequence>(value);
+    for (py::ssize_t i = 0; i < n; ++i) {
+      const py::object item = items[static_cast<std::size_t>(i)];
+      if (isSequence(item)) throw Error(name + " takes " + takes + ", got a list in a list");
       text += (text.empty() ? "" : ",") + optionText(name, takes, item);
     }
     if (text.empty()) throw Error(name + " takes " + takes + ", got an empty list");
     return text;
   }
+  if (py::hasattr(value, "__index__")) return py::str(py::int_(py::reinterpret_borrow<py::object>(value)));
+  if (py::isinstance<py::float_>(value) || py::hasattr(value, "__float__"))
+    return py::repr(py::float_(value.cast<double>()));  // a plain float's repr (numpy's reads np.float64(x))
   throw Error(name + " takes " + takes + ", got a " +
               py::str(py::type::handle_of(value).attr("__name__")).cast<std::string>());
 }

@@ -290,6 +290,14 @@ def test_tradeoff_rows(bundled_probe):
     assert rows["method"] == ["variance"] * 4 and rows["resolution"] == ["auto"] * 4
     with pytest.raises(pl.Error, match="at least 1"):
         pl.tradeoff(a, counts=[0])
+    # numpy's numbers as Python's (numpy 2 writes np.float64(0.05) for repr: it was refused).
+    plain = pl.bake(a, lights=8, max_error=0.05, effects="diffuse,shadow")
+    numpy = pl.bake(a, lights=np.int32(8), max_error=np.float64(0.05), effects=np.str_("diffuse,shadow"))
+    assert (plain["lights"]["rgb"] == numpy["lights"]["rgb"]).all()
+    # Any sequence of counts: a numpy array, a range, a tuple.
+    for counts in (np.array([4, 16]), range(4, 17, 12), (4, 16)):
+        again = pl.tradeoff(a, counts=counts, methods=["variance"], resolutions=["auto"], evaluator_width=128)
+        assert list(again["rows"]["lights"]) == [4, 4, 16, 16], counts
     for bad, message in (({"lights": 4}, "unknown option 'lights'"), ({"counts": []}, "empty list"),
                          ({"counts": [[4]]}, "list in a list"), ({"methods": ["nope"]}, "nope"),
                          ({"resolutions": "tiny"}, "tiny")):
