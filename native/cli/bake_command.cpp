@@ -12,6 +12,7 @@
 #include "probelights/bake_file.h"
 #include "probelights/evaluate.h"
 #include "probelights/image_file.h"
+#include "probelights/names.h"
 #include "probelights/placement.h"
 #include "probelights/preview.h"
 #include "probelights/stopwatch.h"
@@ -34,6 +35,16 @@ std::string assetPathFrom(const std::string& usd, const std::string& probe) {
   return text.rfind("../", 0) == 0 ? text : "./" + text;
 }
 
+// The exporters' flags: "--gltf, --usd or --csv" (each followed by `after`), or joined by `between`.
+std::string exportFlags(const std::string& between = "", const std::string& after = "") {
+  std::vector<std::string> flags;
+  for (const Exporter& e : exporters()) flags.push_back("--" + e.name + after);
+  if (between.empty()) return listOf(flags);
+  std::string out;
+  for (const std::string& f : flags) out += (out.empty() ? "" : between) + f;
+  return out;
+}
+
 BakeArgs parseBakeArgs(const std::vector<std::string>& argv) {
   BakeArgs a;
   // The bake's options, from the table the module shares (request.h), then the command's own. The bake's are
@@ -52,8 +63,9 @@ BakeArgs parseBakeArgs(const std::vector<std::string>& argv) {
     if (o.name == "lights") names.push_back("-n");
     if (o.name == "max_error")  // the command line refuses 0, a tolerance that asks nothing (below)
       table.push_back({names, [&, i](const std::string& v) { given.emplace_back(i, v), maxError = true; }});
-    else if (o.isSwitch())
-      table.push_back(flag(names, [&given, i] { given.emplace_back(i, "true"); }));
+    else if (o.isSwitch())  // --refit, or --refit=off against a preset's
+      table.push_back(onOffSwitch(
+          names, [&given, i](const std::string& v) { given.emplace_back(i, v.empty() ? "true" : v); }));
     else
       table.push_back({names, [&given, i](const std::string& v) { given.emplace_back(i, v); }});
   }
@@ -62,15 +74,18 @@ BakeArgs parseBakeArgs(const std::vector<std::string>& argv) {
                    [&](const std::string& v) { a.request.probe.projection = parseProjectionChoice(v); }});
   table.push_back({{"-o", "--output"}, [&](const std::string& v) { a.output = nonEmpty("-o", v); }});
   table.push_back({{"--preview"}, [&](const std::string& v) { a.preview = nonEmpty("--preview", v); }});
-  table.push_back({{"--gltf"}, [&](const std::string& v) { a.gltf = nonEmpty("--gltf", v); }});
-  table.push_back({{"--usd"}, [&](const std::string& v) { a.usd = nonEmpty("--usd", v); }});
+  for (const Exporter& e : exporters()) {
+    const std::string flag = "--" + e.name;
+    table.push_back(
+        {{flag}, [&a, &e, flag](const std::string& v) { a.exports.emplace_back(&e, nonEmpty(flag, v)); }});
+  }
   table.push_back({{"--residual"}, [&](const std::string& v) { a.residual = nonEmpty("--residual", v); }});
-  bool usdDome = false;
+  bool dome = false;
   table.push_back({{"--usd-dome"}, [&](const std::string& v) {
                      if (v != "none" && v != "reflections" && v != "residual")
                        throw UsageError("--usd-dome takes none, reflections or residual, got '" + v + "'");
-                     a.usdDome = v;
-                     usdDome = true;
+                     a.dome = v;
+                     dome = true;
                    }});
   bool lightType = false, distance = false;
   table.push_back({{"--light-type"}, [&](const std::string& v) {
@@ -88,12 +103,13 @@ BakeArgs parseBakeArgs(const std::vector<std::string>& argv) {
   std::stable_sort(given.begin(), given.end(),
                    [](const auto& x, const auto& y) { return x.first < y.first; });
   for (const auto& [i, value] : given) options[i].set(a.request, options[i].cliName(), value);
-  if ((lightType || distance) && a.gltf.empty() && a.usd.empty())
-    throw UsageError(
-        "--light-type and --distance say how --gltf and --usd write the lights: add --gltf FILE or --usd "
-        "FILE");
-  if (usdDome && a.usd.empty()) throw UsageError("--usd-dome says what --usd writes: add --usd FILE");
-  if (a.usdDome == "residual" && a.residual.empty())
+  const bool domeFormat =
+      std::any_of(a.exports.begin(), a.exports.end(), [](const auto& x) { return x.first->dome; });
+  if ((lightType || distance) && a.exports.empty())
+    throw UsageError("--light-type and --distance say how the lights are written: add " +
+                     exportFlags("", " FILE"));
+  if (dome && !domeFormat) throw UsageError("--usd-dome says what --usd writes: add --usd FILE");
+  if (a.dome == "residual" && a.residual.empty())
     throw UsageError("--usd-dome residual shows the residual that --residual FILE writes: add it");
   if (distance && a.exportAs.kind != ExportKind::Point)
     throw UsageError("--distance places point lights: add --light-type point");
@@ -104,14 +120,16 @@ BakeArgs parseBakeArgs(const std::vector<std::string>& argv) {
     if (a.previews)
       throw UsageError("--previews goes with --out-dir (a library bake); one probe takes --preview FILE");
     a.probe = oneProbe(probes, "bake");
-    refuseOverwritingProbe(a.probe, {a.output, a.preview, a.gltf, a.usd, a.residual});
+    std::vector<std::string> outputs{a.output, a.preview, a.residual};
+    for (const auto& x : a.exports) outputs.push_back(x.second);
+    refuseOverwritingProbe(a.probe, outputs);
     // The residual without a level: the lamps take what is above 10 x the mean luminance.
     if (!a.residual.empty() && !a.request.takesSources()) a.request.sources = {kDefaultSourceLevel, 0};
   } else {
-    if (!a.output.empty() || !a.preview.empty() || !a.gltf.empty() || !a.usd.empty() || !a.residual.empty())
+    if (!a.output.empty() || !a.preview.empty() || !a.exports.empty() || !a.residual.empty())
       throw UsageError(
-          "with --out-dir each probe's JSON (and --previews) goes there: drop -o / --preview / --gltf / "
-          "--usd / --residual");
+          "with --out-dir each probe's JSON (and --previews) goes there: drop -o / --preview / " +
+          exportFlags(" / ") + " / --residual");
     if (probes.empty()) throw UsageError("no probes given: probelights bake PROBE... --out-dir DIR");
     a.probes = probes;
   }
@@ -179,13 +197,30 @@ void printSummary(const BakeArgs& a, const Probe& probe, const EvaluatedBake& ev
 }  // namespace
 
 std::string bakeOptionsUsage() {
+  return tableUsage(requestOptions(), BakeRequest{},
+                    [](const std::string& name) { return std::string(name == "lights" ? ", -n" : ""); });
+}
+
+std::string exportOptionsUsage() {
   std::string out;
-  const BakeRequest defaults;
-  for (const RequestOption& o : requestOptions())
-    out += usageLines(
-        "  " + o.cliName() + (o.name == "lights" ? ", -n" : "") + (o.isSwitch() ? "" : " " + o.values),
-        o.help + (o.isSwitch() || o.get(defaults).empty() ? "" : " (default " + o.get(defaults) + ")"));
-  return out;
+  for (const Exporter& e : exporters())
+    out += usageLines("  --" + e.name + " FILE", "write the lights as " + e.help + " (docs/export.md)");
+  std::vector<std::string> kinds;
+  for (const LightKind& k : lightKinds()) kinds.push_back(k.name);
+  std::string kindWords;
+  for (const std::string& k : kinds) kindWords += (kindWords.empty() ? "" : "|") + k;
+  char distance[32];
+  std::snprintf(distance, sizeof distance, "%g", ExportOptions{}.distance);
+  return out +
+         usageLines(
+             "  --usd-dome none|reflections|residual",
+             "a DomeLight: reflections, the probe for reflections alone with the lamps for diffuse light "
+             "alone (as the add-on splits them); residual, what --residual FILE keeps, with the lamps "
+             "of the sources (default none)") +
+         usageLines("  --light-type " + kindWords,
+                    "what " + exportFlags() + " write (default " + kinds[0] + ")") +
+         usageLines("  --distance M",
+                    "--light-type point: metres from the origin (default " + std::string(distance) + ")");
 }
 
 int bakeCommand(const std::vector<std::string>& argv) {
@@ -194,8 +229,8 @@ int bakeCommand(const std::vector<std::string>& argv) {
   const BakedFile baked = bakeFile(a.probe, a.request);
   const Probe& probe = *baked.probe;
   const EvaluatedBake& done = *baked.result;
-  if (a.usdDome != "none" && probe.projection().kind() != ProjectionKind::LatLong)
-    throw Error("--usd-dome " + a.usdDome + " shows a lat-long dome; '" + a.probe + "' is " +
+  if (a.dome != "none" && probe.projection().kind() != ProjectionKind::LatLong)
+    throw Error("--usd-dome " + a.dome + " shows a lat-long dome; '" + a.probe + "' is " +
                 toString(probe.projection().kind()) + ": convert it to lat-long first, or drop --usd-dome");
   if (!a.output.empty()) {
     writeJson(bakeToJson({a.probe, probe, a.request.bake, done, baked.loadMs}), a.output, 2);
@@ -207,27 +242,29 @@ int bakeCommand(const std::vector<std::string>& argv) {
     writeImageWhole(a.residual,
                     [&](const std::string& tmp) { writeImage(done.sources->residual->view(), tmp); });
   Rgb dropped{};
+  std::vector<std::string> clamping;  // the flags whose files dropped channels below zero
   const char* generator = "probelights " PROBELIGHTS_VERSION;
-  if (!a.gltf.empty()) writeWhole(a.gltf, gltfDocument(done.bake.lights, a.exportAs, generator, &dropped));
-  if (!a.usd.empty()) {
-    ExportOptions usd = a.exportAs;
-    if (a.usdDome != "none") {
-      const bool residual = a.usdDome == "residual";
-      usd.dome = assetPathFrom(a.usd, residual ? a.residual : a.probe);
-      usd.domeTakes = residual ? ExportOptions::Dome::Residual : ExportOptions::Dome::Reflections;
+  for (const auto& [format, file] : a.exports) {
+    ExportOptions as = a.exportAs;
+    if (format->dome && a.dome != "none") {
+      const bool residual = a.dome == "residual";
+      as.dome = assetPathFrom(file, residual ? a.residual : a.probe);
+      as.domeTakes = residual ? ExportOptions::Dome::Residual : ExportOptions::Dome::Reflections;
     }
-    writeWhole(a.usd, usdDocument(done.bake.lights, usd, generator, &dropped));
+    Rgb clamped{};
+    writeWhole(file, format->write(done.bake.lights, as, generator, &clamped));
+    if (clamped[0] < 0 || clamped[1] < 0 || clamped[2] < 0) {
+      dropped = clamped;  // the same lights for every format: the same channels dropped
+      clamping.push_back("--" + format->name);
+    }
   }
   if (!a.quiet) {
     printSummary(a, probe, done, baked.loadMs);
-    if (dropped[0] < 0 || dropped[1] < 0 || dropped[2] < 0)
+    if (!clamping.empty())
       std::printf(
           "note       %s: the lights cannot be negative there; channels below zero written as 0 (rgb %.4g, "
           "%.4g, %.4g W/m^2 left out)\n",
-          a.gltf.empty()  ? "--usd"
-          : a.usd.empty() ? "--gltf"
-                          : "--gltf and --usd",
-          dropped[0], dropped[1], dropped[2]);
+          listOf(clamping).c_str(), dropped[0], dropped[1], dropped[2]);
   }
   return 0;
 }

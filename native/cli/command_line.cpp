@@ -42,18 +42,13 @@ const char* kUsageOwn =
   --residual FILE                   lamps for the probe's bright sources alone; write what the world keeps
                                     (the residual) to FILE (.exr): lamps + residual = the probe, exactly
                                     (--source-level, default 10 x the mean luminance, or --source-share)
-  --gltf FILE                       write the lights as glTF 2.0 (KHR_lights_punctual: suns in lux, points in
-                                    candela, Y up; docs/export.md)
-  --usd FILE                        write the lights as USD (UsdLux, .usda: DistantLights normalized in lux,
-                                    or SphereLights; Z up, metres; docs/export.md)
-  --usd-dome none|reflections|residual
-                                    a DomeLight: reflections, the probe for reflections alone with the lamps
-                                    for diffuse light alone (as the add-on splits them); residual, what
-                                    --residual FILE keeps, with the lamps of the sources (default none)
-  --light-type sun|point            what --gltf and --usd write (default sun)
-  --distance M                      --light-type point: metres from the origin (default 10)
-  --out-dir DIR                     bake many probes (files, folders, quoted globs) into DIR: a JSON each and
-                                    summary.json; the next loads while one bakes; exit 3 if some failed
+)";
+
+// A library bake's options, and the tradeoff's head.
+const char* kUsageLibrary =
+    R"(  --out-dir DIR                     bake many probes (files, folders, quoted globs) into DIR: a JSON
+                                    each and summary.json; the next loads while one bakes; exit 3 if some
+                                    failed
   --previews                        with --out-dir: a preview PNG per probe too
   -q, --quiet                       no summary on standard output
   (sh, sample: --projection and --nonfinite as above; JSON goes to -o FILE or standard output)
@@ -62,8 +57,8 @@ options (tradeoff): the grid, and how each row is made and judged, by the bake's
 )";
 
 std::string usage() {
-  return std::string(kUsage) + bakeOptionsUsage() + kUsageOwn + tradeoffOptionsUsage() +
-         "  (and --projection, -o, --plot)\n";
+  return std::string(kUsage) + bakeOptionsUsage() + kUsageOwn + exportOptionsUsage() + kUsageLibrary +
+         tradeoffOptionsUsage() + "  (and --projection, -o, --plot)\n";
 }
 
 }  // namespace

@@ -58,8 +58,8 @@ std::vector<std::string> parseOptions(const std::vector<std::string>& argv,
       continue;
     }
     if (option->flag) {
-      if (inlineValue) throw UsageError(name + " takes no value");
-      option->apply("");
+      if (inlineValue && !option->switchValue) throw UsageError(name + " takes no value");
+      option->apply(inlineValue ? a.substr(eq + 1) : "");
     } else if (inlineValue) {
       option->apply(a.substr(eq + 1));
     } else {

@@ -30,24 +30,43 @@ void quietLibraries();
 std::string spelled(const Remedy& remedy);
 inline std::string described(const Error& e) { return describe(e, spelled); }
 
-// One option of a command: its spellings and what it does with its value (a flag takes none).
+// One option of a command: its spellings and what it does with its value (a flag takes none; a switch is a
+// flag that also takes "=on" or "=off", "--refit=off" turning off what a preset turned on).
 struct Option {
   std::vector<std::string> names;                 // e.g. {"--lights", "-n"}
-  std::function<void(const std::string&)> apply;  // with the value ("" for a flag)
+  std::function<void(const std::string&)> apply;  // with the value ("" for a flag, or a switch without one)
   bool flag = false;
+  bool switchValue = false;
 };
 
 inline Option flag(std::vector<std::string> names, std::function<void()> set) {
   return {std::move(names), [set = std::move(set)](const std::string&) { set(); }, true};
 }
 
-// Reads "--option value", "--option=value" and flags against `table`; returns the positional arguments.
-// Unknown options are a UsageError.
+inline Option onOffSwitch(std::vector<std::string> names, std::function<void(const std::string&)> set) {
+  return {std::move(names), std::move(set), true, true};
+}
+
+// Reads "--option value", "--option=value", flags and "--switch=off" against `table`; returns the positional
+// arguments. Unknown options are a UsageError.
 std::vector<std::string> parseOptions(const std::vector<std::string>& argv, const std::vector<Option>& table);
 
 // One option of a usage text: `head` ("  --name VALUES") in a column of 36, then `text` wrapped at 110
 // columns.
 std::string usageLines(std::string head, const std::string& text);
+
+// The usage lines of an option table (request.h's TableOption): its name (and `alias`'s extra spelling), its
+// values or, for a switch, "[=off]", its help and its default in `defaults`.
+template <class Options, class Target>
+std::string tableUsage(const Options& options, const Target& defaults,
+                       std::string (*alias)(const std::string& name) = nullptr) {
+  std::string out;
+  for (const auto& o : options)
+    out += usageLines(
+        "  " + o.cliName() + (alias ? alias(o.name) : "") + (o.isSwitch() ? "[=off]" : " " + o.values),
+        o.help + (o.isSwitch() || o.get(defaults).empty() ? "" : " (default " + o.get(defaults) + ")"));
+  return out;
+}
 
 // The one probe a command takes, from the positional arguments.
 std::string oneProbe(const std::vector<std::string>& positional, const std::string& command);

@@ -14,13 +14,7 @@
 namespace probelights::cli {
 
 std::string tradeoffOptionsUsage() {
-  std::string out;
-  const TradeoffRequest defaults;
-  for (const TradeoffOption& o : tradeoffOptions())
-    out += usageLines(
-        "  " + o.cliName() + (o.isSwitch() ? "" : " " + o.values),
-        o.help + (o.isSwitch() || o.get(defaults).empty() ? "" : " (default " + o.get(defaults) + ")"));
-  return out + usageLines("  --no-refit", "no refit rows");
+  return tableUsage(tradeoffOptions(), TradeoffRequest{}) + usageLines("  --no-refit", "no refit rows");
 }
 
 int tradeoffCommand(const std::vector<std::string>& argv) {
@@ -32,7 +26,9 @@ int tradeoffCommand(const std::vector<std::string>& argv) {
   std::vector<Option> table;
   for (const TradeoffOption& o : tradeoffOptions()) {
     if (o.isSwitch())
-      table.push_back(flag({o.cliName()}, [&given, &o] { given.emplace_back(&o, "true"); }));
+      table.push_back(onOffSwitch({o.cliName()}, [&given, &o](const std::string& v) {
+        given.emplace_back(&o, v.empty() ? "true" : v);
+      }));
     else
       table.push_back({{o.cliName()}, [&given, &o](const std::string& v) { given.emplace_back(&o, v); }});
   }

@@ -7,6 +7,7 @@
 
 #include "probelights/error.h"
 #include "probelights/geometry.h"
+#include "probelights/names.h"
 
 namespace probelights {
 
@@ -99,10 +100,22 @@ std::array<double, 3> colourOf(const Written& w) {
 
 }  // namespace
 
+const std::vector<LightKind>& lightKinds() {
+  static const std::vector<LightKind> kLightKinds{
+      {ExportKind::Sun, "sun", "Sun",
+       "Sun lamps: parallel light, each with a soft shadow fitted to its region's light", true, true},
+      {ExportKind::Point, "point", "Point", "Point lamps on a sphere around the origin", false, false},
+  };
+  return kLightKinds;
+}
+
 ExportKind parseExportKind(const std::string& option, const std::string& text) {
-  if (text == "sun") return ExportKind::Sun;
-  if (text == "point") return ExportKind::Point;
-  throw Error(option + " takes sun or point, got '" + text + "'");
+  std::vector<std::string> words;
+  for (const LightKind& k : lightKinds()) {
+    if (k.name == text) return k.kind;
+    words.push_back(k.name);
+  }
+  throw Error(option + " takes " + listOf(words) + ", got '" + text + "'");
 }
 
 double checkedDistance(const std::string& option, double metres) {
@@ -200,6 +213,53 @@ std::string usdDocument(const std::vector<Light>& lights, const ExportOptions& o
            "        uniform token[] xformOpOrder = [\"xformOp:orient\"]\n    }\n";
   }
   return out + "}\n";
+}
+
+std::string csvDocument(const std::vector<Light>& lights, const ExportOptions& options, const std::string&,
+                        Rgb* clampedRgb) {
+  const std::vector<Written> all = written(lights, options.kind, clampedRgb);
+  const bool sun = options.kind == ExportKind::Sun;
+  const double d = options.distance, scale = sun ? 1 : d * d;  // a point's intensity: I = E d^2 (W/sr)
+  std::string out = "name,type,x,y,z,r,g,b,angle_deg,solid_angle_sr\n";
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    const Written& w = all[i];
+    const Vec3 at = sun ? w.direction : Vec3{w.direction.x * d, w.direction.y * d, w.direction.z * d};
+    const double angle = std::isfinite(lights[i].angle) && lights[i].angle > 0 ? lights[i].angle : 0;
+    out += w.name + (sun ? ",sun," : ",point,");
+    for (double v :
+         {at.x, at.y, at.z, w.rgb[0] * scale, w.rgb[1] * scale, w.rgb[2] * scale, angle * 180 / kPi})
+      out += number(v) + ",";
+    out += number(lights[i].solidAngle) + "\n";
+  }
+  return out;
+}
+
+// The formats, in the order the usage text and the module list them.
+const std::vector<Exporter>& exporters() {
+  static const std::vector<Exporter> kExporters{
+      {"gltf",
+       "glTF 2.0 (KHR_lights_punctual, Y up): suns in lux, points in candela, at 683 lm/W as Blender's "
+       "glTF importer reads them",
+       false, &gltfDocument},
+      {"usd",
+       "USD (usda, UsdLux, Z up, metres): DistantLights normalized in lux (the probe's values read as "
+       "nits), or SphereLights; a DomeLight of the probe or the residual if asked",
+       true, &usdDocument},
+      {"csv",
+       "CSV, one row per light (Blender's frame, Z up): direction or position, rgb in W/m^2 (suns) or "
+       "W/sr (points), angle",
+       false, &csvDocument},
+  };
+  return kExporters;
+}
+
+const Exporter& exporter(const std::string& name) {
+  std::vector<std::string> names;
+  for (const Exporter& e : exporters()) {
+    if (e.name == name) return e;
+    names.push_back(e.name);
+  }
+  throw Error("unknown format '" + name + "': use " + listOf(names));
 }
 
 }  // namespace probelights

@@ -5,7 +5,7 @@ scene the way the probe does, each carrying exactly the energy of its region of 
     r = probelights.bake_file("sky.exr", lights=16, evaluate=True)   # read with OpenImageIO
     r["lights"]["direction"], r["lights"]["rgb"], r["evaluation"]
     r = probelights.bake(pixels, lights=64)      # a float32 H x W x C array, rows top to bottom
-    probelights.gltf(r["lights"]), probelights.usd(r["lights"])
+    probelights.gltf(r["lights"]), probelights.usd(r["lights"])   # or export(r["lights"], "csv"): exporters
 
 Directions are in Blender's world frame (Z up, right-handed); a light's rgb is the sum of L dOmega over its
 region (a sun's irradiance in W/m^2). Errors raise probelights.Error (a ValueError) with a one-line message, the
@@ -14,8 +14,9 @@ command line's. The same core runs as the `probelights` command and inside the B
 The native module is loaded on first use (the `probelights` command does not need it to start).
 """
 
-__all__ = ["Error", "bake", "bake_file", "bake_files", "build", "evaluate", "gltf", "max_refit_lights", "method_menu",
-           "methods", "release_memory", "sh_project", "sh_sample", "touch_pages", "tradeoff", "usd", "__version__"]
+__all__ = ["Error", "bake", "bake_file", "bake_files", "build", "default_distance", "evaluate", "export", "exporters",
+           "gltf", "light_kinds", "max_refit_lights", "method_menu", "methods", "release_memory", "sh_project",
+           "sh_sample", "touch_pages", "tradeoff", "usd", "__version__"]
 
 
 def __getattr__(name):

@@ -15,6 +15,12 @@ methods: list[str]
 """Every placement method's name, as method= takes it."""
 method_menu: list[tuple[str, str, str]]
 """A menu's choices of method: (name, label, what it does), the cut choices 'auto' and 'both' first."""
+exporters: list[str]
+"""The formats export() writes: 'gltf', 'usd', 'csv'."""
+light_kinds: list[dict[str, Any]]
+"""The kinds of light light_type= takes: name, label, description, fitted_angle, on_dome."""
+default_distance: float
+"""Metres from the origin of point lights when no distance= is given."""
 
 class Error(ValueError):
     """A bad input or option: its message is one line, the command line's."""
@@ -50,6 +56,11 @@ def evaluate(pixels: Pixels, lights: Lights, *, projection: str = "latlong", eff
              evaluator_width: int = 2048, sun_profile: str = "cone", sun_cones: str = "free",
              nonfinite: str = "error") -> dict[str, float]:
     """The errors (relative RMS of luminance) of any lights (direction, rgb, angle) against the probe."""
+
+def export(lights: Lights, format: str, *, light_type: str = "sun", distance: float = 10.0, reflections: str = "",
+           residual: str = "") -> str:
+    """Text of a bake's lights in a format of `exporters` ('gltf', 'usd', 'csv'); reflections, residual: a
+    DomeLight's image, for a format that takes one (usd)."""
 
 def gltf(lights: Lights, *, light_type: str = "sun", distance: float = 10.0) -> str:
     """glTF 2.0 text (KHR_lights_punctual) of a bake's lights: suns in lux or points in candela."""

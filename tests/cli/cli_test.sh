@@ -86,6 +86,17 @@ check "bake writes glTF lights" \
   "'$bin' bake '$probe' --lights 8 --gltf '$tmp/l.gltf' -q && python3 -c \"import json,sys; d=json.load(open(sys.argv[1])); assert len(d['nodes']) == 8 and d['extensionsUsed'] == ['KHR_lights_punctual']\" '$tmp/l.gltf'"
 check "bake writes USD lights" \
   "'$bin' bake '$probe' --lights 8 --usd '$tmp/l.usda' --light-type point -q && [[ \$(grep -c 'def SphereLight' '$tmp/l.usda') -eq 8 ]] && [[ ! -e '$tmp/b.usda' ]]"
+# Every format the usage lists (the core's exporters) in one run: each file written whole, the CSV's suns the
+# JSON's lights.
+check "bake writes every listed format at once" "formats=\$('$bin' --help | sed -n 's/^  --\\([a-z]*\\) FILE  *write the lights as .*/\\1/p') && [[ \$(echo \$formats) == 'gltf usd csv' ]] && args=() && for f in \$formats; do args+=(--\$f '$tmp/all.'\$f); done && '$bin' bake '$probe' --lights 8 -o '$tmp/all.json' -q \"\${args[@]}\" && missing=0 && for f in \$formats; do [[ -s '$tmp/all.'\$f ]] || missing=1; done && [[ \$missing == 0 ]] && python3 - '$tmp/all.json' '$tmp/all.csv' <<'PY'
+import csv, json, sys
+lights = json.load(open(sys.argv[1]))['lights']
+rows = list(csv.DictReader(open(sys.argv[2])))
+assert [r['type'] for r in rows] == ['sun'] * 8, rows
+for l, r in zip(lights, rows):
+    assert [float(r[k]) for k in 'rgb'] == l['rgb'], (l, r)
+    assert max(abs(float(r[k]) - d) for k, d in zip('xyz', l['direction'])) < 1e-12, (l, r)
+PY"
 check "bake writes a residual and says lamps + residual give back the probe" \
   "'$bin' bake '$probe' --lights 4 --residual '$tmp/res.exr' --source-share 40% >'$tmp/res.txt' && head -c 4 '$tmp/res.exr' | od -An -tx1 | grep -q '76 2f 31 01' && grep -q 'lamps + residual' '$tmp/res.txt' && grep -q '40.0% of it' '$tmp/res.txt' && [[ ! -e '$tmp/r.exr' ]]"
 check "summary shows timings and energy" "grep -q 'time (ms)' '$tmp/summary' && grep -q 'max rel. diff' '$tmp/summary'"
@@ -122,6 +133,9 @@ check "bake --max-error picks a count" "'$bin' bake '$probe' --max-error 2% -o '
 check "tradeoff table, JSON and plot" "'$bin' tradeoff '$probe' --counts 4,16 --methods variance,sh -o '$tmp/t.json' --plot '$tmp/t.png' >'$tmp/t.txt' && head -c 8 '$tmp/t.png' | od -An -c | grep -q 'P   N   G' && python3 -c \"import json; d=json.load(open('$tmp/t.json')); assert len(d['rows']) == 12, len(d['rows'])\""
 # The tradeoff takes the bake's options by their names (one table, tradeoff.h): a preset makes its rows as the
 # preset's bake, the options after it change it; a bake's own option is refused.
+check "a switch turned off against the preset: --refit=off" "'$bin' bake '$probe' --lights 8 --preset blender --refit=off -q -o '$tmp/pr0.json' && '$bin' --help | grep -q '^  --refit\\[=off\\]' && python3 -c \"import json; e=json.load(open('$tmp/pr0.json'))['evaluation']; assert not e['refit'] and e['sun_angles'] == 'fit', e\""
+expect_error "a switch's bad value" "--refit takes on or off, got 'maybe'" bake "$probe" --refit=maybe
+expect_error "a flag with a value" "--quiet takes no value" bake "$probe" --quiet=yes
 check "tradeoff --preset: the rows the preset's bake makes" "'$bin' tradeoff '$probe' --counts 16 --methods variance --resolutions auto --preset blender -o '$tmp/tp.json' >/dev/null && '$bin' bake '$probe' --preset blender --cuts one -n 16 -q -o '$tmp/tb.json' && python3 -c \"import json; r=json.load(open('$tmp/tp.json'))['rows']; e=json.load(open('$tmp/tb.json'))['evaluation']; assert [x['refit'] for x in r] == [False, True] and r[1]['resolution'] == 'auto'; assert all(abs(r[1][k] - e[k]) <= 1e-12 * e[k] for k in ('diffuse', 'shadow')), (r, e)\""
 expect_error "tradeoff refuses a bake's own option" "unknown option '--lights'" tradeoff "$probe" --lights 4
 expect_error "tradeoff refuses an empty count" "comma-separated list" tradeoff "$probe" --counts 4,,16

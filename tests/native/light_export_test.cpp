@@ -5,6 +5,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "probelights/error.h"
 #include "probelights/geometry.h"
 
 namespace probelights {
@@ -83,6 +84,70 @@ TEST(LightExport, UsdPointsWithoutAnAngleAreTheSunsSize) {
   const auto at = usd.find(radius);
   ASSERT_NE(at, std::string::npos);
   EXPECT_NEAR(std::stod(usd.substr(at + radius.size())), 4 * std::sin(0.53 * kPi / 360), 1e-15);
+}
+
+// Every registered format (exporters()), whatever it is: found by its name, text for no lights and for lights
+// of either kind, every light in it by its name, channels below zero dropped and reported.
+TEST(LightExport, EveryRegisteredFormatWritesEveryLightOfEitherKind) {
+  ASSERT_FALSE(exporters().empty());
+  for (const Exporter& e : exporters()) {
+    SCOPED_TRACE(e.name);
+    EXPECT_EQ(&exporter(e.name), &e);
+    EXPECT_FALSE(e.help.empty());
+    EXPECT_FALSE(e.write({}, {}, "t", nullptr).empty());
+    for (const LightKind& kind : lightKinds()) {
+      ExportOptions options;
+      options.kind = parseExportKind("kind", kind.name);
+      Rgb dropped{};
+      const std::string text =
+          e.write({light({0, 0, 1}, {1, 2, 3}), light({1, 0, 0}, {-1, 0.5, 0})}, options, "t", &dropped);
+      EXPECT_NE(text.find(kind.name + "_000"), std::string::npos) << text;
+      EXPECT_NE(text.find(kind.name + "_001"), std::string::npos) << text;
+      EXPECT_DOUBLE_EQ(dropped[0], -1);
+    }
+  }
+  EXPECT_THROW(
+      {
+        try {
+          exporter("fbx");
+        } catch (const Error& e) {
+          EXPECT_STREQ(e.what(), "unknown format 'fbx': use gltf, usd or csv");
+          throw;
+        }
+      },
+      Error);
+}
+
+TEST(LightExport, CsvRowsInBlendersFrameWithIrradianceOrIntensity) {
+  Light l = light({0, 0, 2}, {1, 2, 0.5});
+  l.angle = kPi / 180;
+  l.solidAngle = 0.25;
+  EXPECT_EQ(csvDocument({l}, {}, "t"),
+            "name,type,x,y,z,r,g,b,angle_deg,solid_angle_sr\n"
+            "sun_000,sun,0,0,1,1,2,0.5,1,0.25\n");
+  ExportOptions points;
+  points.kind = ExportKind::Point;
+  points.distance = 2;
+  // At 2 m, a radiant intensity of E d^2 = 4 E W/sr gives the origin the irradiance E.
+  EXPECT_EQ(csvDocument({l}, points, "t"),
+            "name,type,x,y,z,r,g,b,angle_deg,solid_angle_sr\n"
+            "point_000,point,0,0,2,4,8,2,1,0.25\n");
+}
+
+TEST(LightExport, LightKindsAreNamedOnceAndRefusedByTheirWords) {
+  ASSERT_EQ(lightKinds().size(), 2u);
+  EXPECT_EQ(parseExportKind("kind", "sun"), ExportKind::Sun);
+  EXPECT_EQ(parseExportKind("kind", "point"), ExportKind::Point);
+  EXPECT_THROW(
+      {
+        try {
+          parseExportKind("--light-type", "spot");
+        } catch (const Error& e) {
+          EXPECT_STREQ(e.what(), "--light-type takes sun or point, got 'spot'");
+          throw;
+        }
+      },
+      Error);
 }
 
 }  // namespace

@@ -381,6 +381,26 @@ def test_gltf_bad_requests(kwargs, message):
         pl.gltf({"direction": r["lights"]["direction"]})
 
 
+def test_export_writes_every_registered_format_and_the_named_ones_are_its():
+    r = pl.bake(np.ones((8, 16, 3), np.float32), lights=2)
+    assert pl.exporters == ["gltf", "usd", "csv"]
+    for name in pl.exporters:
+        for kind in pl.light_kinds:
+            assert "%s_001" % kind["name"] in pl.export(r["lights"], name, light_type=kind["name"])
+    assert pl.gltf(r["lights"], light_type="point") == pl.export(r["lights"], "gltf", light_type="point")
+    assert pl.usd(r["lights"], reflections="./sky.hdr") == pl.export(r["lights"], "usd", reflections="./sky.hdr")
+    rows = pl.export(r["lights"], "csv", light_type="point", distance=pl.default_distance).splitlines()
+    assert rows[0] == "name,type,x,y,z,r,g,b,angle_deg,solid_angle_sr" and len(rows) == 3
+    # A point's intensity E d^2 (W/sr) gives the origin the irradiance E, the sun's rgb.
+    assert float(rows[1].split(",")[5]) == pytest.approx(r["lights"]["rgb"][0][0] * pl.default_distance ** 2)
+    with pytest.raises(pl.Error, match="unknown format 'fbx': use gltf, usd or csv"):
+        pl.export(r["lights"], "fbx")
+    with pytest.raises(pl.Error, match="gltf has no dome"):
+        pl.export(r["lights"], "gltf", reflections="./sky.hdr")
+    assert [k["name"] for k in pl.light_kinds] == ["sun", "point"]
+    assert [k["on_dome"] for k in pl.light_kinds] == [True, False]
+
+
 def test_evaluate_gives_a_bakes_own_errors_and_measures_any_lights(bundled_probe):
     from rgbe import read_hdr
     pixels = read_hdr(bundled_probe)

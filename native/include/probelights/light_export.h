@@ -10,6 +10,19 @@ namespace probelights {
 
 enum class ExportKind { Sun, Point };
 
+// The kinds of light every shell offers, described once (kLightKinds, light_export.cpp): the CLI's
+// --light-type, the module's light_type= and light_kinds, the add-on's menu (scripts/addon_tables.py writes
+// them into addon/probe_lights/core_tables.json, which the add-on reads before its native module loads).
+struct LightKind {
+  ExportKind kind;
+  std::string name;         // the word every shell takes: "sun"
+  std::string label;        // a menu's entry: "Sun"
+  std::string description;  // one line: what the lamps are
+  bool fittedAngle;         // drawn with the angle fitted to its region's light (soft shadows); else a point
+  bool onDome;              // only its direction matters; else it sits `distance` metres from the origin
+};
+const std::vector<LightKind>& lightKinds();
+
 struct ExportOptions {
   ExportKind kind = ExportKind::Sun;
   double distance = 10;  // metres from the origin, point lights (a sun's position does not light anything)
@@ -22,8 +35,8 @@ struct ExportOptions {
   enum class Dome { Reflections, Residual } domeTakes = Dome::Reflections;
 };
 
-// The words of the CLI's --light-type and the module's light_type= ("sun", "point"), and the distances both
-// take (above 0, at most 1e9 m); a bad one is an Error naming `option`.
+// A light kind by its word (lightKinds), and the distances the shells take (above 0, at most 1e9 m); a bad
+// one is an Error naming `option`.
 ExportKind parseExportKind(const std::string& option, const std::string& text);
 double checkedDistance(const std::string& option, double metres);
 
@@ -58,6 +71,28 @@ std::string gltfDocument(const std::vector<Light>& lights, const ExportOptions& 
 // The fitted solid angle goes in a custom attribute, probelights:solidAngle. Negative channels are written
 // as zero, as gltfDocument does (`clampedRgb`).
 std::string usdDocument(const std::vector<Light>& lights, const ExportOptions& options,
+                        const std::string& generator, Rgb* clampedRgb = nullptr);
+
+// A format the lights are written in, registered once in kExporters (light_export.cpp): the CLI's --NAME FILE
+// (and --NAME-dome when it takes a dome), the module's export(lights, "NAME", ...) and exporters. Adding one:
+// its writer and its row there, its tests (LightExport.EveryRegisteredFormat... already holds it to the
+// basics), its section in docs/export.md.
+struct Exporter {
+  std::string name;  // "gltf": the CLI's --gltf FILE, the module's format="gltf"
+  std::string help;  // what it writes, one sentence (the usage text, the module's docstring)
+  bool dome;         // takes ExportOptions::dome (a DomeLight of the probe or the residual)
+  std::string (*write)(const std::vector<Light>& lights, const ExportOptions& options,
+                       const std::string& generator, Rgb* clampedRgb);  // the text; channels below zero as 0
+};
+const std::vector<Exporter>& exporters();
+const Exporter& exporter(const std::string& name);  // an Error naming the formats when there is none
+
+// CSV (comma-separated, a header row, one row per light: spreadsheets, game engines' data tables), Blender's
+// frame as it is (Z up, metres): name, type, x y z (a sun's unit direction towards the light; a point's
+// position, `distance` metres out), r g b (a sun's irradiance on a facing surface, W/m^2; a point's radiant
+// intensity E d^2, W/sr, giving the origin the irradiance E), the fitted cone's angle (degrees) and solid
+// angle (sr).
+std::string csvDocument(const std::vector<Light>& lights, const ExportOptions& options,
                         const std::string& generator, Rgb* clampedRgb = nullptr);
 
 }  // namespace probelights
