@@ -169,7 +169,7 @@ def _drive(owner, path, index, expression, name, socket, socket_index=None):
     driver.expression = expression  # a simple expression: evaluated without Python, also with auto-run off
 
 
-def make_lights(scene, world, baked, source, light_type=light_kinds.DEFAULT, distance=10.0,
+def make_lights(scene, world, baked, source, light_type=light_kinds.DEFAULT, distance=light_kinds.DEFAULT_DISTANCE,
                 lights_diffuse=True, lights_glossy=False):
     """Creates one lamp per baked light under `world`'s rig. `baked` is the module's result (directions in the
     probe's frame); `source` (world_graph.ProbeSource) says how the world turns the probe (world_from_probe, the

@@ -1,17 +1,11 @@
 """Settings the panels show (per scene) and what the last bake measured."""
 
-import json
-import os
-
 import bpy
 from bpy.props import BoolProperty, CollectionProperty, EnumProperty, FloatProperty, IntProperty, StringProperty
 
-from . import light_kinds
+from . import core_tables, light_kinds
 
-# The menu of methods, the core's (methodMenu): written into methods.json by scripts/addon_methods.py, since the
-# add-on registers before its native module loads.
-with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "methods.json")) as _f:
-    METHODS = [tuple(m) for m in json.load(_f)["methods"]]
+METHODS = core_tables.METHODS  # the core's menu (methodMenu)
 LIGHT_TYPES = light_kinds.enum_items()
 # The suns' angles (the core's sun_angles: fit, spread, points).
 SHADOWS = [("FIT", "Fitted", "Soft shadows: each sun's angle chosen so its shadow matches the probe's light (the "
@@ -45,7 +39,7 @@ def bake_settings():
         "resolution": EnumProperty(name="Working resolution", items=RESOLUTIONS, default="auto"),
         "shadows": EnumProperty(name="Shadows", items=SHADOWS, default="FIT",
                                 description="How soft each sun's shadow is (its angle)"),
-        "distance": FloatProperty(name="Distance", default=10.0, min=0.01, unit="LENGTH",
+        "distance": FloatProperty(name="Distance", default=light_kinds.DEFAULT_DISTANCE, min=0.01, unit="LENGTH",
                                   description="How far from the origin point lights are placed"),
         "replace_diffuse": BoolProperty(name="Diffuse + shadows", default=True,
                                         description="Lights give diffuse light and shadows; the world no longer does "

@@ -31,17 +31,22 @@ def test_manifest_has_the_required_fields_and_matches_bl_info():
     assert info["name"] == m["name"] and info["blender"] <= (3, 4, 0)
 
 
-def test_the_panel_offers_every_placement_method_the_core_registers():
+def test_the_panel_offers_the_cores_methods_and_light_kinds():
     # The add-on registers before its native module loads (a Blender without a build for its Python still
-    # enables it), so properties.py reads its menu of methods from methods.json, which scripts/addon_methods.py
-    # writes from the core's (methodMenu, cut_choice.h): a new method fails here until the file is written again.
+    # enables it), so it reads its menus from core_tables.json, which scripts/addon_tables.py writes from the
+    # core's tables (methodMenu, cut_choice.h; lightKinds, light_export.h): a new method or kind fails here until
+    # the file is written again.
     import json
     import _probelights as pl
-    written = json.load(open(os.path.join(ADDON, "methods.json")))["methods"]
-    assert [tuple(m) for m in written] == list(pl.method_menu), \
-        "methods.json is not the core's menu: PYTHONPATH=build/python python3 scripts/addon_methods.py"
-    offered = [m[0] for m in written]
+    written = json.load(open(os.path.join(ADDON, "core_tables.json")))
+    again = "core_tables.json is not the core's: PYTHONPATH=build/python python3 scripts/addon_tables.py"
+    assert [tuple(m) for m in written["methods"]] == list(pl.method_menu), again
+    assert written["light_kinds"] == pl.light_kinds and written["default_distance"] == pl.default_distance, again
+    offered = [m[0] for m in written["methods"]]
     assert offered[:2] == ["auto", "both"] and offered[2:] == list(pl.methods)
+    import light_kinds  # the add-on's (conftest.py puts its folder on the path)
+    assert [k.id for k in light_kinds.KINDS] == [k["name"].upper() for k in pl.light_kinds]
+    assert light_kinds.DEFAULT_DISTANCE == pl.default_distance
 
 
 def test_one_version_everywhere():
