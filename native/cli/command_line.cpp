@@ -23,11 +23,12 @@ const char* kUsage =
        probelights sh PROBE --bands B [--irradiance] [--window none|hanning|lanczos] [-o sh.json]
        probelights sample PROBE --bands B --epsilon E --samples N [--depth K] [--seed S] [-o samples.json]
        probelights tradeoff PROBE [options (tradeoff)] [-o tradeoff.json] [--plot tradeoff.png]
+       probelights evaluate PROBE LIGHTS.json [options (evaluate)] [-o errors.json]
 
 PROBE is any image OpenImageIO reads. sh: real SH coefficients (Sloan order, orthonormal, Condon-Shortley
 phase, theta from +Z) of the radiance, or with --irradiance of the irradiance. sample: directions and pdfs
 from the SH importance sampler (Jarosz et al. 2009 warping with Berger's epsilon clamping) of the probe's
-luminance.
+luminance. evaluate: the errors of any lights (a bake's JSON, or anybody's in its layout) against the probe.
 
 options (bake):
 )";
@@ -58,7 +59,10 @@ options (tradeoff): the grid, and how each row is made and judged, by the bake's
 
 std::string usage() {
   return std::string(kUsage) + bakeOptionsUsage() + kUsageOwn + exportOptionsUsage() + kUsageLibrary +
-         tradeoffOptionsUsage() + "  (and --projection, -o, --plot)\n";
+         tradeoffOptionsUsage() +
+         "  (and --projection, -o, --plot)\n\noptions (evaluate): how the lights are judged, by the bake's "
+         "options\n" +
+         evaluateOptionsUsage() + "  (and --projection, -o)\n";
 }
 
 }  // namespace
@@ -76,7 +80,11 @@ int probelights::cli::run(const std::vector<std::string>& args) {
       return args.empty() ? 2 : 0;
     }
     const std::map<std::string, int (*)(const std::vector<std::string>&)> commands{
-        {"bake", bakeCommand}, {"sh", shCommand}, {"sample", sampleCommand}, {"tradeoff", tradeoffCommand}};
+        {"bake", bakeCommand},
+        {"sh", shCommand},
+        {"sample", sampleCommand},
+        {"tradeoff", tradeoffCommand},
+        {"evaluate", evaluateCommand}};
     if (auto command = commands.find(args[0]); command != commands.end()) {
       std::vector<std::string> rest(args.begin() + 1, args.end());
       for (const auto& s : rest)
@@ -86,7 +94,7 @@ int probelights::cli::run(const std::vector<std::string>& args) {
       return code;
     }
     throw UsageError("unknown command '" + args[0] +
-                     "': use bake, sh, sample or tradeoff (see probelights --help)");
+                     "': use bake, sh, sample, tradeoff or evaluate (see probelights --help)");
   } catch (const Error& e) {
     std::fprintf(messages(), "probelights: error: %s\n", described(e).c_str());
     return 2;

@@ -13,5 +13,7 @@ int shCommand(const std::vector<std::string>& argv);        // sh_commands.cpp
 int sampleCommand(const std::vector<std::string>& argv);    // sh_commands.cpp
 int tradeoffCommand(const std::vector<std::string>& argv);  // tradeoff_command.cpp
 std::string tradeoffOptionsUsage();                         // its options, from tradeoff.h's table
+int evaluateCommand(const std::vector<std::string>& argv);  // evaluate_command.cpp
+std::string evaluateOptionsUsage();                         // its options, from request.h's evaluate table
 
 }  // namespace probelights::cli

@@ -68,6 +68,40 @@ std::string tableUsage(const Options& options, const Target& defaults,
   return out;
 }
 
+// A command's options from a table (request.h's TableOption: a tradeoff's, an evaluation's), as the module
+// takes them: each value kept as it is read, and applied by apply() after the whole line is read, in the
+// table's order whatever their order here (a preset first, the options that change it after; the same option
+// twice, the last).
+template <class Target>
+class TableOptions {
+ public:
+  explicit TableOptions(const std::vector<TableOption<Target>>& options) : options_(options) {}
+  // The table's options, for parseOptions's table (a switch also takes =off).
+  void addTo(std::vector<Option>& table) {
+    for (const TableOption<Target>& o : options_) {
+      const TableOption<Target>* at = &o;
+      if (o.isSwitch())
+        table.push_back(onOffSwitch({o.cliName()}, [this, at](const std::string& v) {
+          given_.emplace_back(at, v.empty() ? "true" : v);
+        }));
+      else
+        table.push_back({{o.cliName()}, [this, at](const std::string& v) { given_.emplace_back(at, v); }});
+    }
+  }
+  void give(const std::string& name, const std::string& value) {
+    given_.emplace_back(&tableOption(options_, name), value);
+  }
+  void apply(Target& target) const {
+    for (const TableOption<Target>& o : options_)
+      for (const auto& [option, value] : given_)
+        if (option == &o) o.set(target, o.cliName(), value);
+  }
+
+ private:
+  const std::vector<TableOption<Target>>& options_;
+  std::vector<std::pair<const TableOption<Target>*, std::string>> given_;
+};
+
 // The one probe a command takes, from the positional arguments.
 std::string oneProbe(const std::vector<std::string>& positional, const std::string& command);
 

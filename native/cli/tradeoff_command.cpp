@@ -22,26 +22,17 @@ int tradeoffCommand(const std::vector<std::string>& argv) {
   // The tradeoff's options, from the table the module shares (tradeoff.h), applied after the command line is
   // read in the table's order (a preset first, the options that change it after), then the command's own.
   TradeoffRequest request;
-  std::vector<std::pair<const TradeoffOption*, std::string>> given;
+  TableOptions<TradeoffRequest> given(tradeoffOptions());
   std::vector<Option> table;
-  for (const TradeoffOption& o : tradeoffOptions()) {
-    if (o.isSwitch())
-      table.push_back(onOffSwitch({o.cliName()}, [&given, &o](const std::string& v) {
-        given.emplace_back(&o, v.empty() ? "true" : v);
-      }));
-    else
-      table.push_back({{o.cliName()}, [&given, &o](const std::string& v) { given.emplace_back(&o, v); }});
-  }
-  table.push_back(flag({"--no-refit"}, [&] { given.emplace_back(&tradeoffOption("refit"), "false"); }));
+  given.addTo(table);
+  table.push_back(flag({"--no-refit"}, [&] { given.give("refit", "false"); }));
   table.push_back({{"--projection"}, [&](const std::string& v) {
                      request.judging.probe.projection = parseProjectionChoice(v);
                    }});
   table.push_back({{"-o", "--output"}, [&](const std::string& v) { output = nonEmpty("-o", v); }});
   table.push_back({{"--plot"}, [&](const std::string& v) { plot = nonEmpty("--plot", v); }});
   const std::string probePath = oneProbe(parseOptions(argv, table), "tradeoff");
-  for (const TradeoffOption& o : tradeoffOptions())
-    for (const auto& [option, value] : given)
-      if (option == &o) o.set(request, o.cliName(), value);
+  given.apply(request);
   refuseOverwritingProbe(probePath, {output, plot});
 
   Probe probe = loadProbe(probePath, request.judging.probe);

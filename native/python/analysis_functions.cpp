@@ -14,39 +14,21 @@
 namespace probelights::shell {
 namespace {
 
-// The errors of any lights against a probe (evaluate.h): a bake's, a user's own, another tool's. Each light
-// is drawn as the bake draws it: a direction, its rgb (sum of L dOmega) and, if given, a sun's cone angle.
-// Bad lights are refused, one line naming the first: they would give NaN errors, not a measurement.
+// The errors of any lights against a probe (request.h: evaluateGiven), its keywords the evaluate table's
+// options (the CLI's evaluate options).
 py::dict evaluateLights(Pixels pixels, const py::dict& lightsDict, const std::string& projection,
-                        const std::string& effects, int evaluatorWidth, const std::string& sunProfile,
-                        const std::string& sunCones, const std::string& nonfinite) {
+                        const py::kwargs& options) {
   const ImageView view = viewOf(pixels);
   const auto kind = parseProjection(projection);
-  const NonFinitePolicy policy = parseNonFinitePolicy(nonfinite);
-  const Effects e = parseEffects(effects);
-  if (evaluatorWidth < 1)
-    throw Error("evaluator_width takes a width of at least 1 pixel, got '" + std::to_string(evaluatorWidth) +
-                "'");
-  const EvaluatorOptions options{evaluatorWidth, false, parseSunProfile(sunProfile), parseSunCones(sunCones)};
-  std::vector<Light> lights = exportedLights(lightsDict);
-  if (lights.empty()) throw Error("lights is empty: evaluate takes at least one light");
-  for (std::size_t i = 0; i < lights.size(); ++i) {
-    Light& l = lights[i];
-    const std::string which = "light " + std::to_string(i) + " ";
-    const double n = l.direction.length();
-    if (!std::isfinite(n) || n <= 0) throw Error(which + "has no direction (zero or not finite)");
-    l.direction = (1 / n) * l.direction;
-    for (double c : l.rgb)
-      if (!std::isfinite(c)) throw Error(which + "has an rgb that is not finite");
-    if (!std::isfinite(l.angle) || l.angle < 0 || l.angle > kPi)
-      throw Error(which + "has an angle outside [0, pi] radians");
-  }
+  const EvaluateRequest request = fromKeywords(evaluateOptions(), options);
+  const std::vector<Light> lights = exportedLights(lightsDict);
   EffectErrors errors;
   {
     py::gil_scoped_release release;
-    const Probe probe(view, kind, policy);
-    errors = Evaluator(probe, e, options).evaluate(lights);
+    const Probe probe(view, kind, request.judging.probe.nonFinite);
+    errors = evaluateGiven(probe, lights, request);
   }
+  const Effects e = request.judging.accuracy.effects;
   py::dict d;
   if (e & kDiffuse) d["diffuse"] = errors.diffuse;
   if (e & kShadow) d["shadow"] = errors.shadow;
@@ -131,14 +113,17 @@ void defineAnalysis(py::module_& m) {
       optionsDoc(tradeoffOptions());
   m.def("tradeoff", &tradeoffRows, py::arg("pixels"), py::kw_only(), py::arg("projection") = "latlong",
         tradeoffDoc.c_str());
+  static const std::string evaluateDoc =
+      "evaluate(pixels, lights, *, projection='latlong', **options): the errors (relative RMS of luminance, "
+      "evaluate.h) of any lights against the probe: a dict {effect: error}. lights: a dict of arrays as a "
+      "bake's result has them, direction (N,3), rgb (N,3) (sum of L dOmega) and angle (N,), a sun's full "
+      "cone "
+      "angle in radians (0 or absent: points). A bake's own lights, judged as it was (the same options, or "
+      "its "
+      "preset), give its evaluation's errors." +
+      optionsDoc(evaluateOptions());
   m.def("evaluate", &evaluateLights, py::arg("pixels"), py::arg("lights"), py::kw_only(),
-        py::arg("projection") = "latlong", py::arg("effects") = "diffuse,shadow",
-        py::arg("evaluator_width") = EvaluatorOptions{}.maxWidth, py::arg("sun_profile") = "cone",
-        py::arg("sun_cones") = "free", py::arg("nonfinite") = "error",
-        "The errors (relative RMS of luminance, evaluate.h) of any lights against the probe on `effects`: "
-        "a dict {effect: error}. lights: a dict of arrays as a bake's result has them, direction (N,3), "
-        "rgb (N,3) (sum of L dOmega) and angle (N,), a sun's full cone angle in radians (0 or absent: "
-        "points). A bake's own lights give its evaluation's errors.");
+        py::arg("projection") = "latlong", evaluateDoc.c_str());
   m.def(
       "sh_project", &shProject, py::arg("pixels"), py::kw_only(), py::arg("bands"),
       py::arg("projection") = "latlong", py::arg("window") = "none", py::arg("irradiance") = false,

@@ -83,19 +83,6 @@ std::string listText(const std::vector<T>& items, Show show) {
   return out;
 }
 
-// The bake request's option `name` on a tradeoff's judging request, its default the tradeoff's.
-TradeoffOption judgingOption(const std::string& name) {
-  const RequestOption& o = requestOption(name);
-  return {o.name,
-          o.values,
-          o.help,
-          [&o](TradeoffRequest& t, const std::string& spelled, const std::string& v) {
-            o.set(t.judging, spelled, v);
-          },
-          [&o](const TradeoffRequest& t) { return o.get(t.judging); },
-          o.cli};
-}
-
 std::vector<TradeoffOption> makeTradeoffOptions() {
   using T = TradeoffRequest;
   using S = const std::string&;
@@ -118,7 +105,7 @@ std::vector<TradeoffOption> makeTradeoffOptions() {
   };
   for (const char* name : {"preset", "effects", "refit", "evaluator_width", "centroid", "sun_angles",
                            "sun_profile", "sun_cones", "nonfinite"})
-    table.push_back(judgingOption(name));
+    table.push_back(judgingOption<TradeoffRequest>(name));
   return table;
 }
 

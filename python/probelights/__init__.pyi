@@ -52,10 +52,10 @@ def tradeoff(pixels: Pixels, *, projection: str = "latlong", **options: Any) -> 
     Options: counts, methods, resolutions (lists), and preset, effects, refit, evaluator_width, centroid,
     sun_angles, sun_profile, sun_cones, nonfinite as bake() takes them (defaults: tradeoff.__doc__)."""
 
-def evaluate(pixels: Pixels, lights: Lights, *, projection: str = "latlong", effects: str = "diffuse,shadow",
-             evaluator_width: int = 2048, sun_profile: str = "cone", sun_cones: str = "free",
-             nonfinite: str = "error") -> dict[str, float]:
-    """The errors (relative RMS of luminance) of any lights (direction, rgb, angle) against the probe."""
+def evaluate(pixels: Pixels, lights: Lights, *, projection: str = "latlong", **options: Any) -> dict[str, float]:
+    """The errors (relative RMS of luminance) of any lights (direction, rgb, angle) against the probe. Options:
+    preset, effects (default diffuse,shadow), evaluator_width, sun_profile, sun_cones, nonfinite as bake() takes
+    them (evaluate.__doc__)."""
 
 def export(lights: Lights, format: str, *, light_type: str = "sun", distance: float = 10.0, reflections: str = "",
            residual: str = "") -> str:

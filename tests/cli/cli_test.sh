@@ -136,6 +136,11 @@ check "tradeoff table, JSON and plot" "'$bin' tradeoff '$probe' --counts 4,16 --
 check "a switch turned off against the preset: --refit=off" "'$bin' bake '$probe' --lights 8 --preset blender --refit=off -q -o '$tmp/pr0.json' && '$bin' --help | grep -q '^  --refit\\[=off\\]' && python3 -c \"import json; e=json.load(open('$tmp/pr0.json'))['evaluation']; assert not e['refit'] and e['sun_angles'] == 'fit', e\""
 expect_error "a switch's bad value" "--refit takes on or off, got 'maybe'" bake "$probe" --refit=maybe
 expect_error "a flag with a value" "--quiet takes no value" bake "$probe" --quiet=yes
+check "evaluate: a bake's own lights, judged by its preset, give its errors" "'$bin' bake '$probe' --preset blender -n 16 -q -o '$tmp/ev16.json' && '$bin' evaluate '$probe' '$tmp/ev16.json' --preset blender -o '$tmp/ev.json' >'$tmp/ev.txt' && grep -q '^error      diffuse' '$tmp/ev.txt' && python3 -c \"import json; b=json.load(open('$tmp/ev16.json'))['evaluation']; e=json.load(open('$tmp/ev.json')); assert set(e) == {'diffuse', 'shadow'} and all(abs(e[k] - b[k]) <= 1e-12 * b[k] for k in e), (b, e)\""
+expect_error "evaluate without lights" "probelights evaluate PROBE LIGHTS.json" evaluate "$probe"
+expect_error "evaluate of a file that is not JSON" "is not JSON" evaluate "$probe" "$probe"
+expect_error "evaluate over the lights" "is the lights' file" evaluate "$probe" "$tmp/ev16.json" -o "$tmp/ev16.json"
+expect_error "evaluate takes no bake options" "unknown option '--lights'" evaluate "$probe" "$tmp/ev16.json" --lights 3
 check "tradeoff --preset: the rows the preset's bake makes" "'$bin' tradeoff '$probe' --counts 16 --methods variance --resolutions auto --preset blender -o '$tmp/tp.json' >/dev/null && '$bin' bake '$probe' --preset blender --cuts one -n 16 -q -o '$tmp/tb.json' && python3 -c \"import json; r=json.load(open('$tmp/tp.json'))['rows']; e=json.load(open('$tmp/tb.json'))['evaluation']; assert [x['refit'] for x in r] == [False, True] and r[1]['resolution'] == 'auto'; assert all(abs(r[1][k] - e[k]) <= 1e-12 * e[k] for k in ('diffuse', 'shadow')), (r, e)\""
 expect_error "tradeoff refuses a bake's own option" "unknown option '--lights'" tradeoff "$probe" --lights 4
 expect_error "tradeoff refuses an empty count" "comma-separated list" tradeoff "$probe" --counts 4,,16

@@ -415,6 +415,12 @@ def test_evaluate_gives_a_bakes_own_errors_and_measures_any_lights(bundled_probe
     assert worse["shadow"] > 5 * got["shadow"] and worse["diffuse"] > 5 * got["diffuse"]
     points = {"direction": r["lights"]["direction"], "rgb": r["lights"]["rgb"]}  # no angle: point directions
     assert pl.evaluate(pixels, points, evaluator_width=512)["shadow"] != got["shadow"]
+    # Judged by a bake's preset: the add-on's bake and its estimate.
+    eevee = pl.bake(pixels, lights=16, preset="blender-eevee")
+    judged = pl.evaluate(pixels, eevee["lights"], preset="blender-eevee")
+    assert judged == pytest.approx({k: eevee["evaluation"][k] for k in ("diffuse", "shadow")}, rel=1e-12)
+    with pytest.raises(pl.Error, match="unknown option 'method': the options are projection, preset, effects"):
+        pl.evaluate(pixels, r["lights"], method="sh")
 
 
 @pytest.mark.parametrize("change, message", [

@@ -83,6 +83,34 @@ const std::vector<RequestOption>& requestOptions();
 // The option called `name` (module keyword or CLI spelling); throws Error naming the options for another.
 const RequestOption& requestOption(const std::string& name);
 
+// The bake request's option `name` on a request that holds a BakeRequest as `judging` (a tradeoff's, an
+// evaluation's): its names, values and help, its default the holder's.
+template <class Holder>
+TableOption<Holder> judgingOption(const std::string& name) {
+  const RequestOption& o = requestOption(name);
+  return {o.name,
+          o.values,
+          o.help,
+          [&o](Holder& h, const std::string& spelled, const std::string& v) { o.set(h.judging, spelled, v); },
+          [&o](const Holder& h) { return o.get(h.judging); },
+          o.cli};
+}
+
+// A measure of given lights (the CLI's evaluate, the module's evaluate()): judged by the bake request's
+// options (a preset's too), the effects diffuse and shadow unless asked.
+struct EvaluateRequest {
+  BakeRequest judging;
+  EvaluateRequest() { judging.accuracy.effects = kDiffuse | kShadow; }
+};
+using EvaluateOption = TableOption<EvaluateRequest>;
+const std::vector<EvaluateOption>& evaluateOptions();
+
+// The errors of `lights` against the probe as `request` judges them, each light drawn as a bake draws it (its
+// direction, made unit; its rgb, the sum of L dOmega; a sun's full cone angle, 0: a point). A light with no
+// direction, an rgb not finite or an angle outside [0, pi] is an Error naming the first: it would give NaN
+// errors, not a measurement.
+EffectErrors evaluateGiven(const Probe& probe, std::vector<Light> lights, const EvaluateRequest& request);
+
 // Numbers in options: finite reals, whole counts, and a tolerance as a fraction or a percentage ("1%").
 // Each throws Error naming `option` and the text.
 double parseReal(const std::string& option, const std::string& text);
