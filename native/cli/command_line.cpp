@@ -20,8 +20,8 @@ using namespace probelights::cli;
 const char* kUsage =
     R"(usage: probelights bake PROBE [options]      N lights that carry exactly the probe's energy
        probelights bake PROBE... --out-dir DIR [options]   a whole library, one JSON per probe
-       probelights sh PROBE --bands B [--irradiance] [--window none|hanning|lanczos] [-o sh.json]
-       probelights sample PROBE --bands B --epsilon E --samples N [--depth K] [--seed S] [-o samples.json]
+       probelights sh PROBE --bands B [options (sh)] [-o sh.json]
+       probelights sample PROBE --bands B [options (sample)] [-o samples.json]
        probelights tradeoff PROBE [options (tradeoff)] [-o tradeoff.json] [--plot tradeoff.png]
        probelights evaluate PROBE LIGHTS.json [options (evaluate)] [-o errors.json]
 
@@ -52,7 +52,6 @@ const char* kUsageLibrary =
                                     failed
   --previews                        with --out-dir: a preview PNG per probe too
   -q, --quiet                       no summary on standard output
-  (sh, sample: --projection and --nonfinite as above; JSON goes to -o FILE or standard output)
 
 options (tradeoff): the grid, and how each row is made and judged, by the bake's options
 )";
@@ -62,7 +61,9 @@ std::string usage() {
          tradeoffOptionsUsage() +
          "  (and --projection, -o, --plot)\n\noptions (evaluate): how the lights are judged, by the bake's "
          "options\n" +
-         evaluateOptionsUsage() + "  (and --projection, -o)\n";
+         evaluateOptionsUsage() + "  (and --projection, -o)\n\noptions (sh)\n" + shOptionsUsage() +
+         "\noptions (sample)\n" + sampleOptionsUsage() +
+         "  (sh, sample: and --projection; JSON goes to -o FILE or standard output)\n";
 }
 
 }  // namespace

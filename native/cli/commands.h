@@ -7,10 +7,12 @@
 
 namespace probelights::cli {
 
-int run(const std::vector<std::string>& args);              // command_line.cpp
-int bakeCommand(const std::vector<std::string>& argv);      // bake_command.cpp
-int shCommand(const std::vector<std::string>& argv);        // sh_commands.cpp
-int sampleCommand(const std::vector<std::string>& argv);    // sh_commands.cpp
+int run(const std::vector<std::string>& args);            // command_line.cpp
+int bakeCommand(const std::vector<std::string>& argv);    // bake_command.cpp
+int shCommand(const std::vector<std::string>& argv);      // sh_commands.cpp
+int sampleCommand(const std::vector<std::string>& argv);  // sh_commands.cpp
+std::string shOptionsUsage();                             // their options, from sh_request.h's tables
+std::string sampleOptionsUsage();
 int tradeoffCommand(const std::vector<std::string>& argv);  // tradeoff_command.cpp
 std::string tradeoffOptionsUsage();                         // its options, from tradeoff.h's table
 int evaluateCommand(const std::vector<std::string>& argv);  // evaluate_command.cpp

@@ -4,8 +4,7 @@
 #include "json_output.h"
 #include "options.h"
 #include "probelights/image_file.h"
-#include "probelights/sh_sampler.h"
-#include "probelights/spherical_harmonics.h"
+#include "probelights/sh_request.h"
 
 namespace probelights::cli {
 
@@ -15,77 +14,67 @@ constexpr const char* kConvention =
     "real SH, index l(l+1)+m, orthonormal, Condon-Shortley phase (Sloan 2008); theta from +Z, phi = atan2(y, "
     "x)";
 
-// What the sh and sample commands take.
-struct ShArgs {
+// A command of a table (sh_request.h): its options, --projection and -o; the probe, loaded as they say.
+template <class Request>
+struct Asked {
+  Request request;
   std::string probe, output = "-";
-  ProbeOptions probeOptions;
-  int bands = 0, samples = 0, depth = 8;
-  double epsilon = -1;
-  std::uint64_t seed = 1;
-  bool irradiance = false;
-  ShWindow window = ShWindow::None;
 };
 
-ShArgs parseShArgs(const std::vector<std::string>& argv, bool sampling) {
-  ShArgs a;
-  std::vector<Option> table{
-      {{"--bands"}, [&](const std::string& v) { a.bands = parseCount("--bands", v); }},
-      {{"-o", "--output"}, [&](const std::string& v) { a.output = nonEmpty("-o", v); }},
-  };
-  if (sampling) {
-    table.push_back({{"--samples"}, [&](const std::string& v) { a.samples = parseCount("--samples", v); }});
-    table.push_back({{"--depth"}, [&](const std::string& v) { a.depth = parseCount("--depth", v); }});
-    table.push_back({{"--seed"}, [&](const std::string& v) {
-                       a.seed = static_cast<std::uint64_t>(parseCount("--seed", v));
-                     }});
-    table.push_back({{"--epsilon"}, [&](const std::string& v) { a.epsilon = parseReal("--epsilon", v); }});
-  } else {
-    table.push_back(flag({"--irradiance"}, [&] { a.irradiance = true; }));
-    table.push_back({{"--window"}, [&](const std::string& v) { a.window = parseShWindow(v); }});
-  }
-  addProbeOptions(table, a.probeOptions);
-  a.probe = oneProbe(parseOptions(argv, table), sampling ? "sample" : "sh");
+template <class Request>
+Asked<Request> parseAsked(const std::vector<std::string>& argv,
+                          const std::vector<TableOption<Request>>& options, const std::string& command) {
+  Asked<Request> a;
+  TableOptions<Request> given(options);
+  std::vector<Option> table;
+  given.addTo(table);
+  table.push_back({{"--projection"},
+                   [&](const std::string& v) { a.request.probe.projection = parseProjectionChoice(v); }});
+  table.push_back({{"-o", "--output"}, [&](const std::string& v) { a.output = nonEmpty("-o", v); }});
+  a.probe = oneProbe(parseOptions(argv, table), command);
+  given.apply(a.request);
   refuseOverwritingProbe(a.probe, {a.output});
-  if (a.bands < 1) throw UsageError("--bands B (at least 1) is required");
-  if (sampling && a.samples < 1) throw UsageError("--samples N (at least 1) is required");
-  if (sampling && a.epsilon < 0) throw UsageError("--epsilon E (in [0, 0.5]) is required");
   return a;
 }
 
 }  // namespace
 
+std::string shOptionsUsage() { return tableUsage(shOptions(), ShRequest{}); }
+std::string sampleOptionsUsage() { return tableUsage(sampleOptions(), SampleRequest{}); }
+
 int shCommand(const std::vector<std::string>& argv) {
-  ShArgs a = parseShArgs(argv, false);
-  Probe probe = loadProbe(a.probe, a.probeOptions);
-  ShCoefficients sh = projectProbe(probe, a.bands);
-  applyWindow(sh, a.window);
-  if (a.irradiance) sh = irradianceCoefficients(sh);
+  const auto a = parseAsked(argv, shOptions(), "sh");
+  const ShRequest& r = a.request;
+  requireBands(r.bands);  // before the probe is read
+  const Probe probe = loadProbe(a.probe, r.probe);
+  const ShCoefficients sh = shProject(probe, r);
   nlohmann::json c = nlohmann::json::array();
   for (const Rgb& v : sh.c) c.push_back(v);
   writeJson({{"source", sourceToJson(a.probe, probe)},
-             {"bands", a.bands},
+             {"bands", r.bands},
              {"convention", kConvention},
-             {"quantity", a.irradiance ? "irradiance" : "radiance"},
-             {"window", toString(a.window)},
+             {"quantity", r.irradiance ? "irradiance" : "radiance"},
+             {"window", toString(r.window)},
              {"coefficients", c}},
             a.output);
   return 0;
 }
 
 int sampleCommand(const std::vector<std::string>& argv) {
-  ShArgs a = parseShArgs(argv, true);
-  Probe probe = loadProbe(a.probe, a.probeOptions);
-  ShSampler sampler(a.bands, projectProbe(probe, a.bands).luminance(), a.epsilon, a.depth);
+  const auto a = parseAsked(argv, sampleOptions(), "sample");
+  const SampleRequest& r = a.request;
+  requireBands(r.bands);
+  const Probe probe = loadProbe(a.probe, r.probe);
   nlohmann::json dirs = nlohmann::json::array(), pdfs = nlohmann::json::array();
-  for (const auto& s : sampler.sampleSeeded(a.samples, a.seed)) {
+  for (const auto& s : shSamples(probe, r)) {
     dirs.push_back({s.direction.x, s.direction.y, s.direction.z});
     pdfs.push_back(s.pdf);
   }
   writeJson({{"source", sourceToJson(a.probe, probe)},
-             {"bands", a.bands},
-             {"epsilon", a.epsilon},
-             {"depth", a.depth},
-             {"seed", a.seed},
+             {"bands", r.bands},
+             {"epsilon", r.epsilon},
+             {"depth", r.depth},
+             {"seed", r.seed},
              {"convention", kConvention},
              {"directions", dirs},
              {"pdf", pdfs}},

@@ -6,8 +6,7 @@
 
 #include "probelights/evaluate.h"
 #include "probelights/placement.h"
-#include "probelights/sh_sampler.h"
-#include "probelights/spherical_harmonics.h"
+#include "probelights/sh_request.h"
 #include "probelights/tradeoff.h"
 #include "shell.h"
 
@@ -55,20 +54,16 @@ py::dict tradeoffRows(Pixels pixels, const std::string& projection, const py::kw
   return d;
 }
 
-// SH coefficients (bands^2 x 3) of the radiance, or of the irradiance.
-py::array_t<double> shProject(Pixels pixels, int bands, const std::string& projection,
-                              const std::string& window, bool irradiance, const std::string& nonfinite) {
+// SH coefficients (bands^2 x 3) of the radiance, or of the irradiance (sh_request.h's table).
+py::array_t<double> shProjectPixels(Pixels pixels, const std::string& projection, const py::kwargs& options) {
   const ImageView view = viewOf(pixels);
   const auto kind = parseProjection(projection);
-  const ShWindow w = parseShWindow(window);
-  const NonFinitePolicy policy = parseNonFinitePolicy(nonfinite);
+  const ShRequest request = fromKeywords(shOptions(), options);
+  requireBands(request.bands);
   ShCoefficients sh;
   {
     py::gil_scoped_release release;
-    Probe probe(view, kind, policy);
-    sh = projectProbe(probe, bands);
-    applyWindow(sh, w);
-    if (irradiance) sh = irradianceCoefficients(sh);
+    sh = shProject(Probe(view, kind, request.probe.nonFinite), request);
   }
   py::array_t<double> out({static_cast<py::ssize_t>(sh.c.size()), py::ssize_t{3}});
   auto m = out.mutable_unchecked<2>();
@@ -77,19 +72,17 @@ py::array_t<double> shProject(Pixels pixels, int bands, const std::string& proje
   return out;
 }
 
-// Directions (N, 3) and pdfs (N,) from the SH importance sampler of the probe's luminance; u (N, 2) in
-// [0,1)^2 or, if not given, `samples` points from a seeded generator.
-py::tuple shSample(Pixels pixels, int bands, double epsilon, int samples, int depth, std::uint64_t seed,
-                   const std::string& projection, const std::string& nonfinite) {
+// Directions (N, 3) and pdfs (N,) from the SH importance sampler of the probe's luminance, seeded
+// (sh_request.h's table).
+py::tuple shSamplePixels(Pixels pixels, const std::string& projection, const py::kwargs& options) {
   const ImageView view = viewOf(pixels);
   const auto kind = parseProjection(projection);
-  const NonFinitePolicy policy = parseNonFinitePolicy(nonfinite);
+  const SampleRequest request = fromKeywords(sampleOptions(), options);
+  requireBands(request.bands);
   std::vector<ShSampler::Sample> drawn;
   {
     py::gil_scoped_release release;
-    Probe probe(view, kind, policy);
-    drawn =
-        ShSampler(bands, projectProbe(probe, bands).luminance(), epsilon, depth).sampleSeeded(samples, seed);
+    drawn = shSamples(Probe(view, kind, request.probe.nonFinite), request);
   }
   py::array_t<double> dirs({static_cast<py::ssize_t>(drawn.size()), py::ssize_t{3}}),
       pdfs(static_cast<py::ssize_t>(drawn.size()));
@@ -124,16 +117,19 @@ void defineAnalysis(py::module_& m) {
       optionsDoc(evaluateOptions());
   m.def("evaluate", &evaluateLights, py::arg("pixels"), py::arg("lights"), py::kw_only(),
         py::arg("projection") = "latlong", evaluateDoc.c_str());
-  m.def(
-      "sh_project", &shProject, py::arg("pixels"), py::kw_only(), py::arg("bands"),
-      py::arg("projection") = "latlong", py::arg("window") = "none", py::arg("irradiance") = false,
-      py::arg("nonfinite") = "error",
-      "Real SH coefficients (bands^2 x 3; Sloan order, orthonormal, Condon-Shortley phase, theta from +Z).");
-  m.def(
-      "sh_sample", &shSample, py::arg("pixels"), py::kw_only(), py::arg("bands"), py::arg("epsilon") = 0.01,
-      py::arg("samples") = 1024, py::arg("depth") = 8, py::arg("seed") = 1, py::arg("projection") = "latlong",
-      py::arg("nonfinite") = "error",
-      "(directions (N,3), pdf (N,)) from the SH importance sampler of the probe's luminance (Berger 2011).");
+  static const std::string shDoc =
+      "sh_project(pixels, *, projection='latlong', **options): real SH coefficients (bands^2 x 3; Sloan "
+      "order, "
+      "orthonormal, Condon-Shortley phase, theta from +Z)." +
+      optionsDoc(shOptions());
+  m.def("sh_project", &shProjectPixels, py::arg("pixels"), py::kw_only(), py::arg("projection") = "latlong",
+        shDoc.c_str());
+  static const std::string sampleDoc =
+      "sh_sample(pixels, *, projection='latlong', **options): (directions (N,3), pdf (N,)) from the SH "
+      "importance sampler of the probe's luminance (Jarosz et al. 2009 warping, Berger's epsilon clamp)." +
+      optionsDoc(sampleOptions());
+  m.def("sh_sample", &shSamplePixels, py::arg("pixels"), py::kw_only(), py::arg("projection") = "latlong",
+        sampleDoc.c_str());
 }
 
 }  // namespace probelights::shell

@@ -8,19 +8,19 @@
 
 namespace probelights {
 
-namespace {
-
 bool parseSwitch(const std::string& option, const std::string& text) {
   if (text == "true" || text == "on" || text == "1") return true;
   if (text == "false" || text == "off" || text == "0") return false;
   throw Error(option + " takes on or off, got '" + text + "'");
 }
 
-std::string real(double v) {
+std::string realText(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%g", v);
   return buf;
 }
+
+namespace {
 
 std::string onOff(bool v) { return v ? "on" : "off"; }
 
@@ -107,7 +107,7 @@ std::vector<RequestOption> makeOptions() {
           [](const R& r) { return std::to_string(r.bake.shBands); }),
       option(
           "epsilon", "E", "sh: Berger's epsilon", [](R& r, S o, S v) { r.bake.shEpsilon = parseReal(o, v); },
-          [](const R& r) { return real(r.bake.shEpsilon); }),
+          [](const R& r) { return realText(r.bake.shEpsilon); }),
       option(
           "effects", "diffuse,shadow,glossy", "the effects to evaluate (evaluating reports their errors)",
           [](R& r, S, S v) { r.accuracy.effects = parseEffects(v); },
@@ -142,7 +142,7 @@ std::vector<RequestOption> makeOptions() {
                           "'");
             r.accuracy.maxError = e;
           },
-          [](const R& r) { return real(r.accuracy.maxError); }),
+          [](const R& r) { return realText(r.accuracy.maxError); }),
       option(
           "evaluator_width", "W",
           "the probe's width in pixels for the errors and the fits (wider is grouped)",
@@ -187,7 +187,7 @@ std::vector<RequestOption> makeOptions() {
                           v + "'");
             r.sources = {x, 0};
           },
-          [](const R& r) { return real(r.sources.level); }),
+          [](const R& r) { return realText(r.sources.level); }),
       option(
           "source_share", "S",
           "the lamps take this share of the probe's light, its brightest pixels first, the world keeps the "
@@ -198,7 +198,7 @@ std::vector<RequestOption> makeOptions() {
               throw Error(o + " takes a share between 0 and 100% (e.g. 60% or 0.6), got '" + v + "'");
             r.sources = {0, x};
           },
-          [](const R& r) { return real(r.sources.share); }),
+          [](const R& r) { return realText(r.sources.share); }),
       option(
           "nonfinite", "error|zero", "NaN/Inf pixels: refuse the probe or read them as 0",
           [](R& r, S, S v) { r.probe.nonFinite = parseNonFinitePolicy(v); },

@@ -69,14 +69,14 @@ def usd(lights: Lights, *, light_type: str = "sun", distance: float = 10.0, refl
         residual: str = "") -> str:
     """USD text (usda, UsdLux) of a bake's lights."""
 
-def sh_project(pixels: Pixels, *, bands: int, projection: str = "latlong", window: str = "none",
-               irradiance: bool = False, nonfinite: str = "error") -> npt.NDArray[np.float64]:
-    """Real SH coefficients (bands^2 x 3)."""
+def sh_project(pixels: Pixels, *, projection: str = "latlong", **options: Any) -> npt.NDArray[np.float64]:
+    """Real SH coefficients (bands^2 x 3). Options: bands (required), window, irradiance, nonfinite
+    (sh_project.__doc__)."""
 
-def sh_sample(pixels: Pixels, *, bands: int, epsilon: float = 0.01, samples: int = 1024, depth: int = 8,
-              seed: int = 1, projection: str = "latlong",
-              nonfinite: str = "error") -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
-    """(directions (N,3), pdf (N,)) from the SH importance sampler of the probe's luminance."""
+def sh_sample(pixels: Pixels, *, projection: str = "latlong",
+              **options: Any) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+    """(directions (N,3), pdf (N,)) from the SH importance sampler of the probe's luminance. Options: bands
+    (required), epsilon, samples, depth, seed, nonfinite (sh_sample.__doc__)."""
 
 def touch_pages(buffer: Pixels) -> None:
     """Map a new float32 buffer's memory from all threads before a single-threaded writer fills it."""

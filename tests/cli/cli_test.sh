@@ -104,8 +104,10 @@ check "version" "'$bin' --version | grep -q '^probelights [0-9]'"
 check "JSON to stdout" "'$bin' bake '$probe' --lights 2 -o - | python3 -c 'import json,sys; json.load(sys.stdin)'"
 
 # Spherical harmonics: coefficients, samples, and the sh light method.
-expect_error "sh without bands" "--bands" sh "$probe"
-expect_error "sample without epsilon" "--epsilon" sample "$probe" --bands 4 --samples 10
+expect_error "sh without bands" "no SH bands given; give them: --bands B (at least 1)" sh "$probe"
+expect_error "sample without bands" "no SH bands given; give them: --bands" sample "$probe" --samples 10
+check "sample's defaults are the module's (sh_request.h)" "'$bin' sample '$probe' --bands 4 -o '$tmp/sd.json' && python3 -c \"import json; d=json.load(open('$tmp/sd.json')); assert d['epsilon'] == 0.01 and len(d['pdf']) == 1024 and d['depth'] == 8 and d['seed'] == 1\""
+expect_error "sh takes no bake options" "unknown option '--lights'" sh "$probe" --bands 4 --lights 3
 expect_error "sample with a bad epsilon" "epsilon must be in" sample "$probe" --bands 4 --samples 10 --epsilon 0.9
 check "sh writes coefficients" "'$bin' sh '$probe' --bands 4 --irradiance -o '$tmp/sh.json' && python3 - '$tmp/sh.json' <<'PY'
 import json, sys
