@@ -47,29 +47,11 @@ std::string exportFlags(const std::string& between = "", const std::string& afte
 
 BakeArgs parseBakeArgs(const std::vector<std::string>& argv) {
   BakeArgs a;
-  // The bake's options, from the table the module shares (request.h), then the command's own. The bake's are
-  // applied after the command line is read, in the table's order whatever their order here (as the module
-  // applies its keywords): a preset first, the options that change it after; the same option twice, the last.
+  // The bake's options, from the table the module shares (request.h), then the command's own.
+  TableOptions<BakeRequest> given(requestOptions());
   std::vector<Option> table;
-  std::vector<std::pair<std::size_t, std::string>> given;  // (index in requestOptions(), value)
-  const std::vector<RequestOption>& options = requestOptions();
-  auto index = [&](const std::string& name) {
-    return static_cast<std::size_t>(&requestOption(name) - options.data());
-  };
-  bool maxError = false;
-  for (std::size_t i = 0; i < options.size(); ++i) {
-    const RequestOption& o = options[i];
-    std::vector<std::string> names{o.cliName()};
-    if (o.name == "lights") names.push_back("-n");
-    if (o.name == "max_error")  // the command line refuses 0, a tolerance that asks nothing (below)
-      table.push_back({names, [&, i](const std::string& v) { given.emplace_back(i, v), maxError = true; }});
-    else if (o.isSwitch())  // --refit, or --refit=off against a preset's
-      table.push_back(onOffSwitch(
-          names, [&given, i](const std::string& v) { given.emplace_back(i, v.empty() ? "true" : v); }));
-    else
-      table.push_back({names, [&given, i](const std::string& v) { given.emplace_back(i, v); }});
-  }
-  table.push_back(flag({"--both-cuts"}, [&] { given.emplace_back(index("cuts"), "both"); }));
+  given.addTo(table, {{"lights", "-n"}});
+  table.push_back(flag({"--both-cuts"}, [&] { given.give("cuts", "both"); }));
   table.push_back({{"--projection"},
                    [&](const std::string& v) { a.request.probe.projection = parseProjectionChoice(v); }});
   table.push_back({{"-o", "--output"}, [&](const std::string& v) { a.output = nonEmpty("-o", v); }});
@@ -100,9 +82,7 @@ BakeArgs parseBakeArgs(const std::vector<std::string>& argv) {
   table.push_back(flag({"--previews"}, [&] { a.previews = true; }));
   table.push_back(flag({"-q", "--quiet"}, [&] { a.quiet = true; }));
   const std::vector<std::string> probes = parseOptions(argv, table);
-  std::stable_sort(given.begin(), given.end(),
-                   [](const auto& x, const auto& y) { return x.first < y.first; });
-  for (const auto& [i, value] : given) options[i].set(a.request, options[i].cliName(), value);
+  given.apply(a.request);
   const bool domeFormat =
       std::any_of(a.exports.begin(), a.exports.end(), [](const auto& x) { return x.first->dome; });
   if ((lightType || distance) && a.exports.empty())
@@ -113,7 +93,8 @@ BakeArgs parseBakeArgs(const std::vector<std::string>& argv) {
     throw UsageError("--usd-dome residual shows the residual that --residual FILE writes: add it");
   if (distance && a.exportAs.kind != ExportKind::Point)
     throw UsageError("--distance places point lights: add --light-type point");
-  if (maxError && a.request.accuracy.maxError == 0)
+  // The command line refuses 0, a tolerance that asks nothing.
+  if (given.has("max_error") && a.request.accuracy.maxError == 0)
     throw UsageError("--max-error takes an error above 0 (e.g. 1% or 0.01); leave it out to choose --lights");
   a.request.keepPixels = !a.preview.empty() || a.previews;
   if (a.outDir.empty()) {

@@ -68,28 +68,39 @@ std::string tableUsage(const Options& options, const Target& defaults,
   return out;
 }
 
-// A command's options from a table (request.h's TableOption: a tradeoff's, an evaluation's), as the module
-// takes them: each value kept as it is read, and applied by apply() after the whole line is read, in the
-// table's order whatever their order here (a preset first, the options that change it after; the same option
-// twice, the last).
+// A command's options from a table (request.h's TableOption: a bake's, a tradeoff's, an evaluation's), as
+// the module takes them: each value kept as it is read, and applied by apply() after the whole line is read,
+// in the table's order whatever their order here (a preset first, the options that change it after; the
+// same option twice, the last).
 template <class Target>
 class TableOptions {
  public:
   explicit TableOptions(const std::vector<TableOption<Target>>& options) : options_(options) {}
-  // The table's options, for parseOptions's table (a switch also takes =off).
-  void addTo(std::vector<Option>& table) {
+  // The table's options, for parseOptions's table (a switch also takes =off), with `aliases`' other spellings
+  // of some (option name, spelling: "lights", "-n").
+  void addTo(std::vector<Option>& table,
+             const std::vector<std::pair<std::string, std::string>>& aliases = {}) {
     for (const TableOption<Target>& o : options_) {
       const TableOption<Target>* at = &o;
+      std::vector<std::string> names{o.cliName()};
+      for (const auto& [name, spelling] : aliases)
+        if (name == o.name) names.push_back(spelling);
       if (o.isSwitch())
-        table.push_back(onOffSwitch({o.cliName()}, [this, at](const std::string& v) {
+        table.push_back(onOffSwitch(std::move(names), [this, at](const std::string& v) {
           given_.emplace_back(at, v.empty() ? "true" : v);
         }));
       else
-        table.push_back({{o.cliName()}, [this, at](const std::string& v) { given_.emplace_back(at, v); }});
+        table.push_back({std::move(names), [this, at](const std::string& v) { given_.emplace_back(at, v); }});
     }
   }
   void give(const std::string& name, const std::string& value) {
     given_.emplace_back(&tableOption(options_, name), value);
+  }
+  bool has(const std::string& name) const {  // whether the command line gave the option
+    const TableOption<Target>* o = &tableOption(options_, name);
+    for (const auto& g : given_)
+      if (g.first == o) return true;
+    return false;
   }
   void apply(Target& target) const {
     for (const TableOption<Target>& o : options_)
