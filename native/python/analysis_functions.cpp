@@ -110,17 +110,14 @@ void defineAnalysis(py::module_& m) {
       "evaluate(pixels, lights, *, projection='latlong', **options): the errors (relative RMS of luminance, "
       "evaluate.h) of any lights against the probe: a dict {effect: error}. lights: a dict of arrays as a "
       "bake's result has them, direction (N,3), rgb (N,3) (sum of L dOmega) and angle (N,), a sun's full "
-      "cone "
-      "angle in radians (0 or absent: points). A bake's own lights, judged as it was (the same options, or "
-      "its "
-      "preset), give its evaluation's errors." +
+      "cone angle in radians (0 or absent: points). A bake's own lights, judged as it was (the same "
+      "options, or its preset), give its evaluation's errors." +
       optionsDoc(evaluateOptions());
   m.def("evaluate", &evaluateLights, py::arg("pixels"), py::arg("lights"), py::kw_only(),
         py::arg("projection") = "latlong", evaluateDoc.c_str());
   static const std::string shDoc =
       "sh_project(pixels, *, projection='latlong', **options): real SH coefficients (bands^2 x 3; Sloan "
-      "order, "
-      "orthonormal, Condon-Shortley phase, theta from +Z)." +
+      "order, orthonormal, Condon-Shortley phase, theta from +Z)." +
       optionsDoc(shOptions());
   m.def("sh_project", &shProjectPixels, py::arg("pixels"), py::kw_only(), py::arg("projection") = "latlong",
         shDoc.c_str());
