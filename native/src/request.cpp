@@ -20,9 +20,9 @@ std::string realText(double v) {
   return buf;
 }
 
-namespace {
-
 std::string onOff(bool v) { return v ? "on" : "off"; }
+
+namespace {
 
 // The method option's values and help, from the registered methods (placement.h): "a|b|c", "the cut: A, B
 // or C".

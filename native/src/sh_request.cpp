@@ -46,7 +46,7 @@ const std::vector<ShOption>& shOptions() {
       {"irradiance", "",
        "the irradiance's coefficients (convolved with the clamped cosine) in place of the radiance's",
        [](T& t, S o, S v) { t.irradiance = parseSwitch(o, v); },
-       [](const T& t) { return std::string(t.irradiance ? "on" : "off"); }, ""},
+       [](const T& t) { return onOff(t.irradiance); }, ""},
       nonfiniteOption<T>(),
   };
   return options;

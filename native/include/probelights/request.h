@@ -116,8 +116,9 @@ EffectErrors evaluateGiven(const Probe& probe, std::vector<Light> lights, const 
 double parseReal(const std::string& option, const std::string& text);
 int parseCount(const std::string& option, const std::string& text);
 double parseTolerance(const std::string& option, const std::string& text);
-// A switch's text: true/false, on/off or 1/0; and a real as options show it ("%g").
+// A switch's text: true/false, on/off or 1/0; a switch and a real as options show them ("on", "%g").
 bool parseSwitch(const std::string& option, const std::string& text);
+std::string onOff(bool v);
 std::string realText(double v);
 
 // Whether the request needs nothing of a file but its working grid (bakesOnGridAlone, and no pixels kept):
