@@ -131,7 +131,9 @@ def bake_world(context, settings, progress=lambda fraction: None, rendered=None,
     offer = cycles_settings.advice(scene, len(lights))
     if offer:
         warnings.append(offer + " (Use Cycles settings for lamps in the panel)")
-    fitted = eevee_settings.follow(scene)  # in EEVEE: the pool made to hold every sun's shadow, by itself
+    # The pool made to hold every sun's shadow, by itself, in any engine: the file renders right in EEVEE also
+    # where the add-on is not installed (a render farm worker); EEVEE's settings change no Cycles render.
+    fitted = eevee_settings.follow(scene, any_engine=True)
     if fitted:
         notes.append("EEVEE: %s so that no shadow is dropped (Restore world puts it back)"
                      % eevee_settings.describe(fitted))

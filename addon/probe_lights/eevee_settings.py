@@ -8,9 +8,10 @@ tenth of the pages and changes the picture by little (docs/results/eevee.md). Th
 suns' pages (and half or quarter resolution when even the largest pool cannot); the values it replaced are kept
 on the scene and put back by Restore world.
 
-The fit follows the scene, not the click: it is made by itself whenever the scene is to render in EEVEE with baked
-suns the pool cannot hold (before every render, including `blender -b file.blend -E BLENDER_EEVEE_NEXT -f 1`; when
-the engine changes to EEVEE; when a file opens in EEVEE), because a full pool is never what the user wants: its
+The fit follows the scene, not the click: a bake makes it in any engine (the file then renders right in EEVEE where
+the add-on is not installed: `blender -b file.blend -E BLENDER_EEVEE_NEXT -f 1` on a render farm worker), and it is
+made again by itself whenever the scene is to render in EEVEE with baked suns the pool cannot hold (before every
+render; when the engine changes to EEVEE; when a file opens in EEVEE), because a full pool is never what the user wants: its
 renders are farther from Cycles and differ from one render to the next (docs/results/eevee.md). The panel says it was
 done; Restore world undoes it.
 """
@@ -111,6 +112,10 @@ def apply(scene):
     {name: value}."""
     if not eevee_next(scene):
         return {}
+    return _apply(scene)
+
+
+def _apply(scene):
     wanted = _wanted(scene)
     set_remembering(scene, BEFORE_KEY, scene.eevee, wanted)
     return wanted
@@ -132,15 +137,18 @@ def fitted(scene):
     return bool(scene.get(BEFORE_KEY))
 
 
-def follow(scene):
-    """Fits the shadow pool to the scene's baked suns when it renders in EEVEE Next and the pool cannot hold them.
-    Returns what it set ({} when nothing was needed)."""
-    if not eevee_next(scene):
+def follow(scene, any_engine=False):
+    """Fits the shadow pool to the scene's baked suns when it renders in EEVEE Next and the pool cannot hold them;
+    with `any_engine` (a bake) whatever the engine is now, in a Blender with EEVEE Next: EEVEE's settings change no
+    Cycles render, and the file then renders right in EEVEE on a machine without the add-on (a render farm worker,
+    `blender -b file.blend -E BLENDER_EEVEE_NEXT -f 1`, runs no handler of ours). Returns what it set ({} when
+    nothing was needed)."""
+    if not (blender_caps.has_eevee_next(bpy.app.version) if any_engine else eevee_next(scene)):
         return {}
     suns = baked_suns(scene)
     if suns < 2 or not _wanted(scene, suns):
         return {}
-    return apply(scene)
+    return _apply(scene)
 
 
 def _say(scene, changed):

@@ -197,6 +197,7 @@ def make_lights(scene, world, baked, source, light_type=light_kinds.DEFAULT, dis
     _remove(collection, [o for o in collection.objects if o.get(OBJECT_TAG) and o not in kept])
 
     light_tree = hasattr(getattr(scene, "cycles", None), "use_light_tree")  # Cycles 3.5+ (None: Cycles disabled)
+    by_drivers = engine_drivers_work(scene)
     strength = float(source.strength)
     follow_strength = source.strength_socket is not None and strength != 0.0
     objects = []
@@ -240,6 +241,8 @@ def make_lights(scene, world, baked, source, light_type=light_kinds.DEFAULT, dis
         rays = [r for r, lit in zip(LAMP_RAYS, (lights_diffuse, lights_glossy, lights_glossy, lights_diffuse)) if lit]
         obj[RAYS_KEY] = ",".join(rays)
         _show_to(obj, LAMP_RAYS if is_eevee(scene.render.engine) else rays)
+        if by_drivers:
+            _route_by_engine(obj, rays, scene)
         # Multiple importance sampling only when the lamps light reflections, in a Cycles with a light tree. With MIS
         # a lamp's light on a many-closure BSDF (Principled) is shared between the lamp's own samples, which Cycles
         # evaluates closure by closure against the lamp's visibility (the glossy closures left out), and rays
@@ -324,18 +327,59 @@ def _shown_to(obj):
     return {ray for ray in LAMP_RAYS if getattr(obj, "visible_" + ray)}
 
 
+# A driver's variable reads an enum property as its value: render.engine's is the engine's place among the
+# registered engines, and Blender registers EEVEE first (0), Workbench next, add-ons' engines (Cycles) after; measured
+# in 3.4.1, 4.2.23, 4.5.15 and 5.3.0. A simple expression: evaluated without Python, so also with auto-run off.
+ENGINE_EXPRESSION = "engine == 0"
+
+
+def engine_drivers_work(scene):
+    """Whether this Blender numbers its engines as ENGINE_EXPRESSION expects (EEVEE first)."""
+    items = scene.render.bl_rna.properties["engine"].enum_items
+    return any(item.value == 0 and is_eevee(item.identifier) for item in items)
+
+
+def _route_by_engine(obj, split, scene):
+    """The lamp lights every ray in EEVEE and its Cycles split elsewhere, by drivers on the rays outside the split:
+    the file renders right in either engine on a machine without the add-on (a render farm worker runs no handler;
+    `blender -b file.blend -E BLENDER_EEVEE_NEXT -f 1`). The rays of the split carry no driver: the user may turn
+    them off."""
+    for ray in LAMP_RAYS:
+        path = "visible_" + ray
+        if ray in split:
+            obj.driver_remove(path)
+            continue
+        fcurve = obj.driver_add(path)
+        for m in list(fcurve.modifiers):
+            fcurve.modifiers.remove(m)
+        driver = fcurve.driver
+        driver.type = "SCRIPTED"
+        var = driver.variables[0] if len(driver.variables) else driver.variables.new()
+        var.name, var.type = "engine", "SINGLE_PROP"
+        var.targets[0].id_type = "SCENE"
+        var.targets[0].id = scene
+        var.targets[0].data_path = "render.engine"
+        driver.expression = ENGINE_EXPRESSION
+
+
+def _routed_by_engine(obj):
+    ad = obj.animation_data
+    return ad is not None and any(d.data_path.startswith("visible_") for d in ad.drivers)
+
+
 def follow_engine(scene):
     """The lamps' ray visibility follows the render engine. Cycles keeps the world for the effects the bake's split
     left to it (reflections by default) and the lamps light the others, routed by ray visibility. EEVEE shows the
     world to the camera only (world_mix.py), so there the lamps light every effect: EEVEE 4.2 and newer honours a
     lamp's ray visibility (a Glossy BSDF ball lit by 16 lamps of the default split rendered black; bpy 4.5.15 and
     5.3.0), EEVEE Legacy does not. A lamp whose visibility is neither of the two (the user's own) is left as it
-    is. Returns how many lamps changed."""
+    is. Lamps baked since 2026-12-06 follow it by drivers (_route_by_engine), which need no add-on; this keeps
+    earlier bakes' lamps following it. Returns how many lamps changed."""
     eevee = is_eevee(scene.render.engine)
     changed = 0
     lamps = (o for c in scene.collection.children if c.get(COLLECTION_TAG) for o in c.objects)
     for obj in lamps:  # the baked collections only: this runs after every depsgraph update
-        if obj.type != "LIGHT" or not obj.get(OBJECT_TAG):
+        if obj.type != "LIGHT" or not obj.get(OBJECT_TAG) or _routed_by_engine(obj):
             continue
         if RAYS_KEY not in obj:  # baked before 2026-12-05 (in Cycles' split, factors 0): adopted once
             obj[RAYS_KEY] = ",".join(sorted(_shown_to(obj)))

@@ -182,8 +182,10 @@ def test_lamps_of_an_earlier_bake_light_every_effect_in_eevee():
     scene.render.engine = "CYCLES"
     bright_spot_world((40, 20))
     lamps = bake(count=4, replace_reflections=False)
-    for o in lamps:  # as the add-on left them until 2026-12-05
+    for o in lamps:  # as the add-on left them until 2026-12-05 (until 2026-12-06 their rays had no drivers)
         del o[light_objects.RAYS_KEY]
+        for ray in light_objects.LAMP_RAYS:
+            o.driver_remove("visible_" + ray)
         if hasattr(o.data, "specular_factor"):
             o.data.specular_factor = 0.0
     rays = ("visible_diffuse", "visible_glossy", "visible_transmission", "visible_volume_scatter")
