@@ -54,10 +54,18 @@ def test_eevee_shadow_pool_follows_the_scene_and_restore():
     assert (scene.eevee.shadow_pool_size, scene.eevee.shadow_resolution_scale) == ("1024", 0.5)
     assert bpy.ops.probe_lights.restore() == {"FINISHED"}
     assert (scene.eevee.shadow_pool_size, scene.eevee.shadow_resolution_scale) == ("512", 1.0)
-    # Baked under Cycles (no pool to fit), then set to EEVEE: the panel says what to do in one line, the offer
-    # does it, and Restore puts it back.
+    # Baked under Cycles: the bake fits the pool all the same (EEVEE's settings change no Cycles render, and the
+    # file renders right in EEVEE where the add-on is not installed, test_eevee.py); Restore puts it back.
     scene.render.engine = "CYCLES"
     bake(count=30)
+    assert shadows.fitted(scene) and scene.eevee.shadow_pool_size == "1024", (
+        shadows.fitted(scene), scene.eevee.shadow_pool_size, settings.last_notes)
+    assert "EEVEE: shadow pool 1024 MB" in settings.last_notes, settings.last_notes
+    assert bpy.ops.probe_lights.restore() == {"FINISHED"} and scene.eevee.shadow_pool_size == "512"
+    # The pool set back by hand after a bake, then EEVEE: the panel says what to do in one line, the offer does
+    # it, and Restore puts it back.
+    bake(count=30)
+    shadows.restore(scene)
     assert not shadows.fitted(scene) and scene.eevee.shadow_pool_size == "512"
     scene.render.engine = harness.eevee_engine()
     line = shadows.advice(scene, shadows.baked_suns(scene))
