@@ -77,6 +77,42 @@ def principled_material(roughness, base=0.8):
     return mat
 
 
+def still_life(width, height, samples):
+    """A still life on a floor, the scene users render (issue 52): a polished metal sphere, a glossy red dielectric
+    box, a rough dielectric vase, a thin rod lying on the floor (contact shadows, thin objects), on a 12 m diffuse
+    floor, seen from a camera like sphere_over_plane's; Cycles with 4 bounces."""
+    scene = bpy.context.scene
+    bpy.ops.mesh.primitive_plane_add(size=12)
+    bpy.context.active_object.data.materials.append(diffuse_material(0.5))
+
+    def principled(name, colour, roughness, metallic=0.0):
+        mat = principled_material(roughness)
+        mat.name = name
+        p = mat.node_tree.nodes["Principled BSDF"]
+        p.inputs["Base Color"].default_value = (*colour, 1)
+        p.inputs["Metallic"].default_value = metallic
+        return mat
+
+    bpy.ops.mesh.primitive_uv_sphere_add(radius=0.7, location=(-1.3, 0.3, 0.7), segments=48, ring_count=24)
+    bpy.ops.object.shade_smooth()
+    bpy.context.active_object.data.materials.append(principled("metal", (0.9, 0.9, 0.9), 0.15, metallic=1.0))
+    bpy.ops.mesh.primitive_cube_add(size=1.0, location=(0.4, 0.6, 0.5), rotation=(0, 0, math.radians(30)))
+    bpy.context.active_object.data.materials.append(principled("glossy", (0.6, 0.08, 0.05), 0.1))
+    bpy.ops.mesh.primitive_cylinder_add(radius=0.35, depth=1.4, location=(1.6, 1.2, 0.7), vertices=48)
+    bpy.ops.object.shade_smooth()
+    bpy.context.active_object.data.materials.append(principled("rough", (0.25, 0.45, 0.7), 0.7))
+    bpy.ops.mesh.primitive_cylinder_add(radius=0.04, depth=2.2, location=(0.2, -0.9, 0.04), vertices=16,
+                                        rotation=(0, math.radians(90), math.radians(20)))
+    bpy.context.active_object.data.materials.append(principled("rod", (0.8, 0.8, 0.8), 0.4))
+    cam = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
+    cam.location = (-0.15, -5.2, 2.1)
+    cam.rotation_euler = (math.radians(74), 0, 0)
+    cam.data.lens = 45
+    scene.collection.objects.link(cam)
+    scene.camera = cam
+    cycles_output(scene, width, height, samples, bounces=4, transparent=True)
+
+
 def glossy_spheres(width, height, samples, roughness=ROUGHNESS):
     """sphere_over_plane's set-up with one Principled sphere per roughness side by side, left to right, each over
     its own third of a plane of the same material: the picture's column thirds are the three materials (thirds())."""
@@ -269,10 +305,14 @@ def describe_errors(errors):
                                                      "%.4f" % flip_mean if flip_mean is not None else "n/a")
 
 
-def save_png(pixels, path):
-    """Saves linear renders, tone-mapped (x / (1 + x), sRGB), as an 8-bit PNG."""
-    x = np.clip(pixels[..., :3] / (1 + pixels[..., :3]), 0, 1)
-    srgb = np.where(x <= 0.0031308, 12.92 * x, 1.055 * x ** (1 / 2.4) - 0.055)
+def save_png(pixels, path, display=False):
+    """Saves linear renders, tone-mapped (x / (1 + x), sRGB), as an 8-bit PNG; with `display`, pixels that are
+    display values already (a FLIP map)."""
+    if display:
+        srgb = np.clip(pixels[..., :3], 0, 1)
+    else:
+        x = np.clip(pixels[..., :3] / (1 + pixels[..., :3]), 0, 1)
+        srgb = np.where(x <= 0.0031308, 12.92 * x, 1.055 * x ** (1 / 2.4) - 0.055)
     h, w = srgb.shape[:2]
     rgba = np.ones((h, w, 4), np.float32)
     rgba[..., :3] = srgb
