@@ -11,9 +11,9 @@ on the scene and put back by Restore world.
 The fit follows the scene, not the click: a bake makes it in any engine (the file then renders right in EEVEE where
 the add-on is not installed: `blender -b file.blend -E BLENDER_EEVEE_NEXT -f 1` on a render farm worker), and it is
 made again by itself whenever the scene is to render in EEVEE with baked suns the pool cannot hold (before every
-render; when the engine changes to EEVEE; when a file opens in EEVEE), because a full pool is never what the user wants: its
-renders are farther from Cycles and differ from one render to the next (docs/results/eevee.md). The panel says it was
-done; Restore world undoes it.
+render; when the engine changes to EEVEE; when a file opens in EEVEE), because a full pool is never what the user
+wants: its renders are farther from Cycles and differ from one render to the next (docs/results/eevee.md). The panel
+says it was done; Restore world undoes it.
 """
 
 import bpy

@@ -241,8 +241,7 @@ def make_lights(scene, world, baked, source, light_type=light_kinds.DEFAULT, dis
         rays = [r for r, lit in zip(LAMP_RAYS, (lights_diffuse, lights_glossy, lights_glossy, lights_diffuse)) if lit]
         obj[RAYS_KEY] = ",".join(rays)
         _show_to(obj, LAMP_RAYS if is_eevee(scene.render.engine) else rays)
-        if by_drivers:
-            _route_by_engine(obj, rays, scene)
+        _route_by_engine(obj, rays if by_drivers else LAMP_RAYS, scene)  # else the handler routes it
         # Multiple importance sampling only when the lamps light reflections, in a Cycles with a light tree. With MIS
         # a lamp's light on a many-closure BSDF (Principled) is shared between the lamp's own samples, which Cycles
         # evaluates closure by closure against the lamp's visibility (the glossy closures left out), and rays
