@@ -74,8 +74,13 @@ def timed_render():
     return picture, time.perf_counter() - start
 
 
+SUMMARY = {}  # probe -> {render: "FLIP / block"}
+
+
 def row(name, truth, picture, seconds, note=""):
     block, _, pixel, flip = render_scene.render_errors(truth, picture)
+    SUMMARY.setdefault(os.path.basename(PROBE), {})[name] = "%.4f / %.2f %%%s" % (
+        flip, 100 * block, note if name == "EEVEE's own, best threshold" else "")
     print("| %s | %s%s | %.4f | %.2f %% | %.2f %% | %.1f |" % (name, os.path.basename(PROBE), note, flip, 100 * pixel,
                                                              100 * block, seconds), flush=True)
     return flip
@@ -148,5 +153,12 @@ for PROBE in PROBES:
                               os.path.join(PICTURES, "%s_%s.png" % (SCENE, name)))
         maps = np.concatenate([flip_map(truth, p) for p in (own_probe, ours_probe, residual)], axis=1)
         render_scene.save_png(maps, os.path.join(PICTURES, "%s_%s_flip.png" % (SCENE, name)), display=True)
+print("\nHDR-FLIP / block difference:\n")
+names = ["Cycles, another seed", "EEVEE's own, threshold 10", "EEVEE's own, best threshold", "EEVEE's own + probe",
+         "ours", "ours + probe", "sources + residual + probe"]
+print("| probe | " + " | ".join(names) + " |")
+print("|---" * (len(names) + 1) + "|")
+for probe, cells in SUMMARY.items():
+    print("| %s | %s |" % (probe, " | ".join(cells.get(name, "-") for name in names)))
 sys.stdout.flush()
 os._exit(0)  # bpy 4.5's teardown can hang after EEVEE renders (harness.run says more)
