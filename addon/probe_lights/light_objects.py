@@ -22,6 +22,7 @@ COLLECTION_TAG = "probe_lights_collection"
 WORLD_KEY = "probe_lights_world"  # on the collection: the world it was baked from (an ID pointer)
 OBJECT_TAG = "probe_lights"
 RIG_TAG = "probe_lights_rig"
+VOLUME_TAG = "probe_lights_volume"  # a light probe volume the add-on fitted (probe_volumes.py): Restore removes it
 COLLECTION_NAME = "Probe Lights: %s"
 SUN_SCALE = 0.1  # a sun's object scale: its light does not change, its viewport line is a tenth as long
 NOT_SCENERY = {"LIGHT", "CAMERA", "EMPTY", "SPEAKER", "LIGHT_PROBE", "LIGHTPROBE"}
@@ -83,7 +84,7 @@ def remove_lights(world):
     c = world_collection(world)
     if c is None:
         return 0
-    objects = [o for o in c.objects if o.get(OBJECT_TAG) or o.get(RIG_TAG)]
+    objects = [o for o in c.objects if o.get(OBJECT_TAG) or o.get(RIG_TAG) or o.get(VOLUME_TAG)]
     lamps = sum(1 for o in objects if o.get(OBJECT_TAG))
     _remove(c, objects)
     return lamps
@@ -128,19 +129,35 @@ def _collection(scene, world):
     return c
 
 
-def scene_bounds(scene):
-    """Centre and radius of the sphere around the scene's objects (not lamps, cameras or empties), or None."""
+def scene_box(scene, rendered_only=False):
+    """(lowest, highest corner) of the box around the scene's objects (not lamps, cameras or empties; with
+    `rendered_only`, not those hidden from renders), or None."""
     corners = []
     for obj in scene.objects:
-        if obj.type in NOT_SCENERY or obj.get(OBJECT_TAG):
+        if obj.type in NOT_SCENERY or obj.get(OBJECT_TAG) or (rendered_only and obj.hide_render):
             continue
         m = obj.matrix_world
         corners += [m @ Vector(tuple(v)) for v in obj.bound_box]
     if not corners:
         return None
     a = np.array([tuple(c) for c in corners])
-    lo, hi = a.min(axis=0), a.max(axis=0)
+    return a.min(axis=0), a.max(axis=0)
+
+
+def scene_bounds(scene):
+    """Centre and radius of the sphere around the scene's objects (not lamps, cameras or empties), or None."""
+    box = scene_box(scene)
+    if box is None:
+        return None
+    lo, hi = box
     return (lo + hi) / 2, float(np.linalg.norm(hi - lo) / 2)
+
+
+def add_to_lamps(scene, obj, tag):
+    """Puts `obj` (tagged `tag`) in the collection of the lamps of the scene's world: it goes with them (Restore,
+    a switch of the world)."""
+    obj[tag] = 1
+    _collection(scene, scene.world).objects.link(obj)
 
 
 def _driver_target(socket):

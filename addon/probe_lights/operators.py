@@ -287,18 +287,31 @@ class PROBE_LIGHTS_OT_bake_light_probes(bpy.types.Operator):
 
     @classmethod
     def poll(cls, context):
-        return (has_eevee_next(bpy.app.version) and context.scene is not None  # EEVEE Next's bake
-                and bool(probe_volumes.volume_probes(context.scene)))
+        scene = context.scene
+        return (has_eevee_next(bpy.app.version) and scene is not None  # EEVEE Next's bake
+                and bool(probe_volumes.volume_probes(scene) or probe_volumes.offer(scene)))
 
     def execute(self, context):
+        scene = context.scene
+        fitted = None
+        if not probe_volumes.volume_probes(scene):  # none yet: one around the scene (Restore removes it)
+            try:
+                fitted = probe_volumes.fit_volume(scene)
+            except ValueError as e:
+                self.report({"ERROR"}, str(e))
+                return {"CANCELLED"}
+        start = time.perf_counter()
         try:
             suns, seen = probe_volumes.bake(context)
         except RuntimeError as e:
+            if fitted is not None:  # a failed bake leaves the scene as it was
+                probe_volumes.remove_fitted(fitted)
             self.report({"ERROR"}, "Light probe bake failed: %s" % str(e).strip().splitlines()[-1])
             return {"CANCELLED"}
         merged = " (as %d for their shadows in the bake)" % seen if seen < suns else ""
-        self.report({"INFO"}, "Baked %d light probe volumes with %d suns%s" % (
-            len(probe_volumes.volume_probes(context.scene)), suns, merged))
+        added = "Added a light probe volume around the scene and baked it" if fitted else (
+            "Baked %d light probe volumes" % len(probe_volumes.volume_probes(scene)))
+        self.report({"INFO"}, "%s with %d suns%s in %.1f s" % (added, suns, merged, time.perf_counter() - start))
         return {"FINISHED"}
 
 

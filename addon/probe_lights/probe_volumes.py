@@ -20,7 +20,7 @@ import bpy
 
 from . import eevee_settings
 from .bake import LUM
-from .light_objects import baked_lights, sun_direction
+from .light_objects import VOLUME_TAG, add_to_lamps, baked_lights, scene_box, sun_direction
 from .world_mix import has_residual
 
 # Shadow pages one sun takes in a volume probe bake, at any shadow resolution scale: the most measured over plane
@@ -59,6 +59,43 @@ def advice(scene):
         return ""
     return ("EEVEE's light probe bake drops shadows of more than %d suns at this shadow pool: bake the probes here"
             % suns_the_bake_holds(scene, int(scene.eevee.shadow_pool_size)))
+
+
+# The fitted volume: the objects' bounds and a little more, at EEVEE's default of 4 cells a side. Around the still
+# life of docs/results/eevee_rivals.md 4 a side baked in 8-17 s and 16 a side in 275-349 s (2 cores); with 4 a
+# side around the sphere over a plane EEVEE came from 7.3-9.2 % to 3.3-4.2 % of Cycles with 4 bounces.
+VOLUME_MARGIN, VOLUME_CELLS = 1.05, 4
+
+
+def fit_volume(scene):
+    """A light probe volume around the scene's rendered objects, in the lamps' collection (Restore removes it).
+    Raises ValueError when the scene has no objects."""
+    box = scene_box(scene, rendered_only=True)
+    if box is None:
+        raise ValueError("the scene has no objects for a light probe volume to hold")
+    lo, hi = box
+    half = [max(0.25, (b - a) / 2) * VOLUME_MARGIN for a, b in zip(lo, hi)]
+    data = bpy.data.lightprobes.new("Probe Lights volume", "VOLUME")
+    data.resolution_x = data.resolution_y = data.resolution_z = VOLUME_CELLS
+    obj = bpy.data.objects.new("Probe Lights volume", data)
+    obj.location = [(a + b) / 2 for a, b in zip(lo, hi)]
+    obj.scale = half
+    add_to_lamps(scene, obj, VOLUME_TAG)
+    return obj
+
+
+def remove_fitted(obj):
+    data = obj.data
+    bpy.data.objects.remove(obj)
+    if data is not None and data.users == 0:
+        bpy.data.lightprobes.remove(data)
+
+
+def offer(scene):
+    """One line when EEVEE (Next) renders the baked suns with no light probe volume to bounce their light, or ''."""
+    if not eevee_settings.eevee_next(scene) or volume_probes(scene) or len(_suns(scene)) == 0:
+        return ""
+    return "EEVEE bounces no light without a light probe volume: add one around the scene, baked with the lamps"
 
 
 def _luminance(lamp):

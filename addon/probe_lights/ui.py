@@ -135,11 +135,13 @@ def _draw_results(layout, context, width, measure):
 
 
 def _draw_probe_bake(layout, scene, width, measure):
-    """What EEVEE's light probe bake lacks for the baked suns, with the bake that makes room."""
-    note = probe_volumes.advice(scene)
+    """What EEVEE's light probe bake lacks for the baked suns, with the bake that makes room; or, with no volume
+    probe, the offer of one fitted around the scene."""
+    advice = probe_volumes.advice(scene)
+    note = advice or probe_volumes.offer(scene)
     if note:
         box = layout.box()
-        _lines(box.column(align=True), note, width - 16, measure, icon="ERROR")
+        _lines(box.column(align=True), note, width - 16, measure, icon="ERROR" if advice else "INFO")
         box.operator("probe_lights.bake_light_probes", icon="LIGHTPROBE_VOLUME")
 
 

@@ -119,7 +119,66 @@ def test_probe_bake_holds_256_suns():
     print("  256 suns: the bake saw %d" % min(256, harness.addon_module("probe_volumes").suns_the_bake_holds(scene)))
 
 
+def _drawn_in_the_panel(scene):
+    layout = _Layout()
+    harness.addon_module("ui")._draw_probe_bake(layout, scene, 300, lambda text: 6 * len(text))
+    return layout.placed
+
+
+def test_a_volume_is_fitted_around_the_scene_when_there_is_none():
+    """With baked suns in EEVEE and no light probe volume, the panel offers one: the bake adds it around the
+    scene's rendered objects (in the lamps' collection), bakes it with the lamps (the lit objects brighter by their
+    bounce light), and Restore world takes it out with the lamps. A bake that fails leaves no volume behind."""
+    harness.empty_scene()
+    harness.addon_module("eevee_settings").restore(bpy.context.scene)
+    harness.env_world(bpy.data.images.load(harness.BUNDLED_PROBE))
+    render_scene.sphere_over_plane(96, 72, CYCLES_SAMPLES)
+    scene = bpy.context.scene
+    scene.render.engine = harness.eevee_engine()
+    scene.render.film_transparent = True
+    scene.eevee.taa_render_samples = TAA_SAMPLES
+    assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=16) == {"FINISHED"}
+    volumes = harness.addon_module("probe_volumes")
+    assert volumes.offer(scene) and not volumes.volume_probes(scene)
+    assert ("operator", "probe_lights.bake_light_probes") in _drawn_in_the_panel(scene)
+    lamps_only = render_scene.render()
+
+    real_bake = volumes.bake
+
+    def failing(context):
+        raise RuntimeError("Error: simulated failure of EEVEE's bake")
+
+    volumes.bake = failing  # the operator reads the module's attribute at the call
+    try:
+        bpy.ops.probe_lights.bake_light_probes()
+        raise AssertionError("the failed bake reported no error")
+    except RuntimeError as e:  # an operator's ERROR report, to a script
+        assert "Light probe bake failed: Error: simulated failure" in str(e), e
+    finally:
+        volumes.bake = real_bake
+    assert not volumes.volume_probes(scene) and not bpy.data.lightprobes, "a failed bake leaves nothing behind"
+
+    assert bpy.ops.probe_lights.bake_light_probes() == {"FINISHED"}
+    [volume] = volumes.volume_probes(scene)
+    assert volume.get(harness.addon_module("light_objects").VOLUME_TAG)
+    assert not volumes.offer(scene)
+    lo = np.array(volume.location) - np.array(volume.scale)
+    hi = np.array(volume.location) + np.array(volume.scale)
+    for obj in (o for o in scene.objects if o.type == "MESH"):
+        corners = np.array([tuple(obj.matrix_world @ v.co) for v in obj.data.vertices])
+        assert (corners.min(axis=0) >= lo - 1e-6).all() and (corners.max(axis=0) <= hi + 1e-6).all(), obj.name
+    with_probe = render_scene.render()
+    lit = render_scene.lit_blocks(lamps_only)
+    gain = (render_scene.block_luminance(with_probe)[lit].sum() / render_scene.block_luminance(lamps_only)[lit].sum())
+    print("  fitted volume %s m: the lit objects %.3f times as bright" % (
+        " x ".join("%.1f" % (2 * s) for s in volume.scale), gain))
+    assert 1.02 < gain < 1.5, gain
+    assert bpy.ops.probe_lights.restore() == {"FINISHED"}
+    assert not volumes.volume_probes(scene)
+
+
 if bpy.app.version >= (4, 2, 0):
-    harness.run([test_probe_bake_after_64_suns, test_probe_bake_holds_256_suns])
+    harness.run([test_probe_bake_after_64_suns, test_probe_bake_holds_256_suns,
+                 test_a_volume_is_fitted_around_the_scene_when_there_is_none])
 else:
     print("skipped: EEVEE Legacy (Blender %s) bakes no light probe volumes this way" % bpy.app.version_string)
