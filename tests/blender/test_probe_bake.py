@@ -21,17 +21,23 @@ TAA_SAMPLES = 16
 CYCLES_SAMPLES = 256  # the reference: Cycles with 4 bounces (render_scene.sphere_over_plane)
 
 
-def _scene_with_volume(suns):
-    """The sphere over a plane lit by the bundled probe, `suns` baked in EEVEE, a light probe volume around both."""
+def _baked_scene(suns, width=160, height=120):
+    """The sphere over a plane lit by the bundled probe, `suns` baked in EEVEE."""
     harness.empty_scene()
     harness.addon_module("eevee_settings").restore(bpy.context.scene)
     harness.env_world(bpy.data.images.load(harness.BUNDLED_PROBE))
-    render_scene.sphere_over_plane(160, 120, CYCLES_SAMPLES)
+    render_scene.sphere_over_plane(width, height, CYCLES_SAMPLES)
     scene = bpy.context.scene
     scene.render.engine = harness.eevee_engine()
     scene.render.film_transparent = True  # block_difference takes the lit object pixels from the alpha
     scene.eevee.taa_render_samples = TAA_SAMPLES
     assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=suns) == {"FINISHED"}  # with the refit, as by default
+    return scene
+
+
+def _scene_with_volume(suns):
+    """_baked_scene with a light probe volume around the sphere and the plane."""
+    scene = _baked_scene(suns)
     bpy.ops.object.lightprobe_add(type="VOLUME", location=(0, 0, 1))
     volume = bpy.context.object
     volume.scale = (4, 4, 2)
@@ -129,15 +135,7 @@ def test_a_volume_is_fitted_around_the_scene_when_there_is_none():
     """With baked suns in EEVEE and no light probe volume, the panel offers one: the bake adds it around the
     scene's rendered objects (in the lamps' collection), bakes it with the lamps (the lit objects brighter by their
     bounce light), and Restore world takes it out with the lamps. A bake that fails leaves no volume behind."""
-    harness.empty_scene()
-    harness.addon_module("eevee_settings").restore(bpy.context.scene)
-    harness.env_world(bpy.data.images.load(harness.BUNDLED_PROBE))
-    render_scene.sphere_over_plane(96, 72, CYCLES_SAMPLES)
-    scene = bpy.context.scene
-    scene.render.engine = harness.eevee_engine()
-    scene.render.film_transparent = True
-    scene.eevee.taa_render_samples = TAA_SAMPLES
-    assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=16) == {"FINISHED"}
+    scene = _baked_scene(16, 96, 72)
     volumes = harness.addon_module("probe_volumes")
     assert volumes.offer(scene) and not volumes.volume_probes(scene)
     assert ("operator", "probe_lights.bake_light_probes") in _drawn_in_the_panel(scene)
