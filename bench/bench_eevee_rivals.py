@@ -86,12 +86,6 @@ def row(name, truth, picture, seconds, note=""):
     return flip
 
 
-def flip_map(truth, picture):
-    import flip_evaluator
-    rgb = [np.ascontiguousarray(np.clip(p[..., :3], 0, None), dtype=np.float32) for p in (truth, picture)]
-    return flip_evaluator.evaluate(*rgb, "HDR", applyMagma=True)[0]
-
-
 eevee = harness.eevee_engine()
 print("Blender %s, %s, %dx%d; Cycles %d samples, 4 bounces; EEVEE %d samples; %d suns" % (
     bpy.app.version_string, SCENE, W, H, CYCLES_SAMPLES, EEVEE_SAMPLES, SUNS))
@@ -151,7 +145,7 @@ for PROBE in PROBES:
         name = os.path.splitext(os.path.basename(PROBE))[0]
         render_scene.save_png(np.concatenate([truth, own_probe, ours_probe, residual], axis=1),
                               os.path.join(PICTURES, "%s_%s.png" % (SCENE, name)))
-        maps = np.concatenate([flip_map(truth, p) for p in (own_probe, ours_probe, residual)], axis=1)
+        maps = np.concatenate([render_scene.flip(truth, p, picture=True) for p in (own_probe, ours_probe, residual)], axis=1)
         render_scene.save_png(maps, os.path.join(PICTURES, "%s_%s_flip.png" % (SCENE, name)), display=True)
 print("\nHDR-FLIP / block difference:\n")
 names = ["Cycles, another seed", "EEVEE's own, threshold 10", "EEVEE's own, best threshold", "EEVEE's own + probe",

@@ -275,21 +275,21 @@ def pixel_difference(world_lit, light_lit):
     return float(np.abs(yb[lit] - ya[lit]).sum() / ya[lit].sum())
 
 
-def flip(reference, test):
+def flip(reference, test, picture=False):
     """The mean of HDR-FLIP (Andersson et al. 2021, NVIDIA's flip-evaluator: the error a viewer sees flipping
     between the two pictures over the exposures the reference spans) of two linear renders, or None where
-    flip-evaluator is not installed (scripts/bpy-env.sh pins it beside bpy). Negative values are clamped to 0: it
-    takes none."""
+    flip-evaluator is not installed (scripts/bpy-env.sh pins it beside bpy); with `picture`, its error map in
+    display colours (magma) instead. Negative values are clamped to 0: it takes none."""
     try:
         import flip_evaluator
     except ImportError:
         return None
 
-    def rgb(picture):
-        return np.ascontiguousarray(np.clip(picture[..., :3], 0.0, None), dtype=np.float32)
+    def rgb(image):
+        return np.ascontiguousarray(np.clip(image[..., :3], 0.0, None), dtype=np.float32)
 
-    _, mean, _ = flip_evaluator.evaluate(rgb(reference), rgb(test), "HDR", applyMagma=False)
-    return float(mean)
+    error_map, mean, _ = flip_evaluator.evaluate(rgb(reference), rgb(test), "HDR", applyMagma=picture)
+    return error_map if picture else float(mean)
 
 
 def render_errors(world_lit, light_lit):
