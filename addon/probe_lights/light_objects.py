@@ -172,6 +172,13 @@ def _driver_target(socket):
 
 def _drive(owner, path, index, expression, name, socket, socket_index=None):
     """owner.path[index] = expression of the variable `name`, read from a node socket's value."""
+    id_type, id_, data_path = _driver_target(socket)
+    _drive_by(owner, path, index, expression, name,
+              (id_type, id_, data_path + ("[%d]" % socket_index if socket_index is not None else "")))
+
+
+def _drive_by(owner, path, index, expression, name, target):
+    """owner.path[index] = expression of the variable `name`, read from `target` (id_type, id, data path)."""
     fcurve = owner.driver_add(path, index) if index is not None else owner.driver_add(path)
     for m in list(fcurve.modifiers):
         fcurve.modifiers.remove(m)
@@ -179,10 +186,7 @@ def _drive(owner, path, index, expression, name, socket, socket_index=None):
     driver.type = "SCRIPTED"
     var = driver.variables[0] if len(driver.variables) else driver.variables.new()
     var.name, var.type = name, "SINGLE_PROP"
-    id_type, id_, data_path = _driver_target(socket)
-    var.targets[0].id_type = id_type
-    var.targets[0].id = id_
-    var.targets[0].data_path = data_path + ("[%d]" % socket_index if socket_index is not None else "")
+    var.targets[0].id_type, var.targets[0].id, var.targets[0].data_path = target
     driver.expression = expression  # a simple expression: evaluated without Python, also with auto-run off
 
 
@@ -364,18 +368,8 @@ def _route_by_engine(obj, split, scene):
         path = "visible_" + ray
         if ray in split:
             obj.driver_remove(path)
-            continue
-        fcurve = obj.driver_add(path)
-        for m in list(fcurve.modifiers):
-            fcurve.modifiers.remove(m)
-        driver = fcurve.driver
-        driver.type = "SCRIPTED"
-        var = driver.variables[0] if len(driver.variables) else driver.variables.new()
-        var.name, var.type = "engine", "SINGLE_PROP"
-        var.targets[0].id_type = "SCENE"
-        var.targets[0].id = scene
-        var.targets[0].data_path = "render.engine"
-        driver.expression = ENGINE_EXPRESSION
+        else:
+            _drive_by(obj, path, None, ENGINE_EXPRESSION, "engine", ("SCENE", scene, "render.engine"))
 
 
 def _routed_by_engine(obj):
