@@ -1,5 +1,6 @@
 #include "probelights/partition.h"
 
+#include <algorithm>
 #include <bit>
 #include <queue>
 #include <tuple>
@@ -157,6 +158,50 @@ Partition partitionSphere(const MomentTable& table, const CutRule& rule, int cou
                                               std::to_string(table.litCells()) + " lit " + cells});
   }
   return p;
+}
+
+std::optional<Partition> replayPartition(const MomentTable& table, const CutRule& rule,
+                                         const Partition& previous) {
+  if (table.litCells() == 0) return std::nullopt;
+  Partition p;
+  p.regions.push_back(table.wholeGrid());
+  p.horizonCut = previous.horizonCut;
+  std::vector<RegionMoments> moments{table.moments(table.wholeGrid())};
+  // The previous tree's regions as its cuts made them, to know which region each cut split.
+  std::vector<Rect> before{table.wholeGrid()};
+  for (std::size_t k = 0; k < previous.cuts.size(); ++k) {
+    const Cut& old = previous.cuts[k];
+    std::size_t i = 0;
+    while (i < before.size() && !(before[i] == old.region)) ++i;
+    if (i == before.size()) throw Error("a partition's cuts do not make its regions (replayPartition)");
+    auto oldParts = splitRect(before[i], old.axis, old.position);
+    before[i] = oldParts[0], before.push_back(oldParts[1]);
+
+    if (moments[i].litCells < 2) return std::nullopt;
+    const RegionSweep sweep(table, p.regions[i], moments[i]);
+    const auto range = litCutRange(sweep, old.axis);
+    if (!range) return std::nullopt;
+    int position = old.position;  // a horizon cut
+    if (!(k == 0 && previous.horizonCut)) {
+      const auto chosen = rule.positionAlong(sweep, old.axis);
+      if (!chosen) return std::nullopt;
+      position = *chosen;
+    }
+    position = std::clamp(position, (*range)[0], (*range)[1]);
+    const Cut cut{p.regions[i], old.axis, position};
+    auto parts = splitRect(p.regions[i], old.axis, position);
+    p.cuts.push_back(cut);
+    const RegionMoments first = sweep.before(old.axis, position), second = sweep.after(old.axis, position);
+    p.regions[i] = parts[0], moments[i] = first;
+    p.regions.push_back(parts[1]), moments.push_back(second);
+  }
+  return p;
+}
+
+double partitionSpread(const MomentTable& table, const Partition& partition) {
+  double sum = 0;
+  for (const Rect& r : partition.regions) sum += table.moments(r).variance();
+  return sum;
 }
 
 }  // namespace probelights

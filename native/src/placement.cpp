@@ -70,37 +70,44 @@ BakeResult WorkingGrid::bake(const Probe& probe, const BakeOptions& options) con
   return r;
 }
 
+int horizonRow(const Probe& probe, const MomentTable& table, const BakeOptions& options) {
+  if (!options.splitAtHorizon || probe.projection().kind() != ProjectionKind::LatLong) return -1;
+  return (probe.height() / 2 + table.cellSize() / 2) / table.cellSize();  // nearest cell border
+}
+
 BakeResult bake(const Probe& probe, const MomentTable& table, const BakeOptions& options) {
   checkLightCount(options.lights);
   const PlacementMethod& method = placementMethod(options.method);
   if (!method.rule) throw Error("the " + method.name + " method bakes without a working grid");
+  Stopwatch t;
+  const std::unique_ptr<CutRule> rule = method.rule(probe);
+  Partition partition = partitionSphere(table, *rule, options.lights, horizonRow(probe, table, options));
+  const double partitionMs = t.ms();
+  BakeResult result = lightsOfPartition(probe, table, options.centroid, std::move(partition));
+  result.timings.partitionMs = partitionMs;
+  return result;
+}
+
+BakeResult lightsOfPartition(const Probe& probe, const MomentTable& table, CentroidWeight centroid,
+                             Partition partition) {
   BakeResult result;
   result.cellSize = table.cellSize();
   result.totalRgb = table.integral();
-
-  Stopwatch t;
-  const std::unique_ptr<CutRule> rule = method.rule(probe);
-  int horizonRow = -1;
-  if (options.splitAtHorizon && probe.projection().kind() == ProjectionKind::LatLong)
-    horizonRow = (probe.height() / 2 + table.cellSize() / 2) / table.cellSize();  // nearest cell border
-  Partition partition = partitionSphere(table, *rule, options.lights, horizonRow);
   result.horizonSplit = partition.horizonCut;
-  result.timings.partitionMs = t.ms();
-
   for (const Rect& r : partition.regions) result.regions.push_back(table.toPixels(r));
   for (const Cut& c : partition.cuts) result.cuts.push_back(toPixels(table, c));
-  result.notes = partition.notes;
+  result.notes = std::move(partition.notes);
 
-  t.restart();
-  if (table.hasCellSums() && (options.centroid == CentroidWeight::Energy || table.hasSecondMoments())) {
+  Stopwatch t;
+  if (table.hasCellSums() && (centroid == CentroidWeight::Energy || table.hasSecondMoments())) {
     // A coarse grid kept each cell's exact sums: a region's sums are those of its cells (no second image
     // pass).
     std::vector<PixelSums> sums(partition.regions.size());
     parallelFor(static_cast<std::int64_t>(sums.size()),
                 [&](std::int64_t i) { sums[i] = table.cellSums(partition.regions[i]); });
-    result.lights = lightsFromSums(probe, result.regions, sums, options.centroid);
+    result.lights = lightsFromSums(probe, result.regions, sums, centroid);
   } else {
-    result.lights = lightsFromRegions(probe, result.regions, options.centroid);
+    result.lights = lightsFromRegions(probe, result.regions, centroid);
   }
   result.timings.lightsMs = t.ms();
   noteNonPositiveChannels(result);

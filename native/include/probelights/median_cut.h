@@ -12,6 +12,7 @@ class MedianCutRule final : public CutRule {
   explicit MedianCutRule(const Projection& projection) : projection_(projection) {}
   std::string name() const override { return "median-cut"; }
   std::optional<Cut> chooseCut(const RegionSweep& region) const override;
+  std::optional<int> positionAlong(const RegionSweep& region, Axis axis) const override;
   // The brightest region is split first: median cut aims at equal energy per light.
   double priority(const RegionMoments& region) const override { return region.energy; }
 

@@ -79,6 +79,9 @@ class CutRule {
   // Where to cut a region that holds at least two lit cells, at a position within litCutRange; nullopt if
   // none.
   virtual std::optional<Cut> chooseCut(const RegionSweep& region) const = 0;
+  // Where the rule would cut the region along `axis` alone, within litCutRange; nullopt if it cannot be cut
+  // along it. A sequence's frame keeps the previous frame's axes and moves only the positions (sequence.h).
+  virtual std::optional<int> positionAlong(const RegionSweep& region, Axis axis) const = 0;
   // Which region (of these moments) to split next when not every region is split in a round: the largest
   // value first.
   virtual double priority(const RegionMoments& region) const = 0;
@@ -97,5 +100,17 @@ struct Partition {
 // renders of a sphere over a plane it did not lower the error at 64 lights and raised it at 16, so it is off
 // by default.) After it, every split is by priority.
 Partition partitionSphere(const MomentTable& table, const CutRule& rule, int count, int horizonRow = -1);
+
+// `previous`'s tree of cuts made again on another probe's table of the same size (the next frame of a
+// sequence, sequence.h): each cut splits the same region, along the same axis, in the same order, at the
+// position the rule picks along that axis in this probe. A horizon cut stays where it was. The regions come
+// in previous's order, so region i is the same light as before. nullopt when a cut can no longer be made (a
+// region lost its light).
+std::optional<Partition> replayPartition(const MomentTable& table, const CutRule& rule,
+                                         const Partition& previous);
+
+// The partition's spread: the sum over its regions of sum w |d - c|^2 (RegionMoments::variance), what
+// variance minimization makes small; how far a light's region is from being one direction.
+double partitionSpread(const MomentTable& table, const Partition& partition);
 
 }  // namespace probelights

@@ -70,6 +70,15 @@ BakeResult bake(const Probe& probe, const BakeOptions& options);
 // what the build cost. Not for Method::SphericalHarmonics, which has no grid (throws Error).
 BakeResult bake(const Probe& probe, const MomentTable& table, const BakeOptions& options);
 
+// The lights of a partition of `table`'s grid (one per region, from the exact sums), as bake() makes them
+// from the partition it cut; timings.partitionMs is the caller's. For a caller that cut the grid itself (a
+// sequence's frame, sequence.h).
+BakeResult lightsOfPartition(const Probe& probe, const MomentTable& table, CentroidWeight centroid,
+                             Partition partition);
+
+// The working-grid row of a lat-long probe's horizon when options split there, else -1 (partitionSphere).
+int horizonRow(const Probe& probe, const MomentTable& table, const BakeOptions& options);
+
 // A placement method as registered (methods.cpp). A method either cuts the working grid (`rule`: the rule
 // that picks each cut, partition.h) or places its lights from the probe's pixels (`place`).
 struct PlacementMethod {

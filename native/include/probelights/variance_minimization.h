@@ -12,6 +12,7 @@ class VarianceMinimizationRule final : public CutRule {
  public:
   std::string name() const override { return "variance"; }
   std::optional<Cut> chooseCut(const RegionSweep& region) const override;
+  std::optional<int> positionAlong(const RegionSweep& region, Axis axis) const override;
   // The most spread-out region is split first.
   double priority(const RegionMoments& region) const override { return region.variance(); }
 };

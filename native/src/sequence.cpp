@@ -1,0 +1,267 @@
+#include "probelights/sequence.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <optional>
+#include <string>
+#include <tuple>
+
+#include "probelights/error.h"
+#include "probelights/stopwatch.h"
+
+namespace probelights {
+
+namespace {
+
+// The angle between two unit vectors, exact near 0 (where acos of the dot product loses half the digits).
+double angleBetween(const Vec3& a, const Vec3& b) {
+  return 2 * std::atan2((a - b).length(), (a + b).length());
+}
+
+std::string describe(int width, int height, ProjectionKind projection) {
+  return std::to_string(width) + "x" + std::to_string(height) + " " + toString(projection);
+}
+
+// A light kept for an id without a region this frame: dark, where it was.
+Light darkLight(const Vec3& direction) {
+  Light l;
+  l.direction = direction;
+  return l;
+}
+
+}  // namespace
+
+std::vector<int> minimumCostAssignment(const std::vector<double>& cost, int n) {
+  // Shortest augmenting paths with row and column potentials u, v (the Hungarian method in its O(n^3) form):
+  // row i is added at each step, and the reduced costs cost - u - v stay >= 0 on every pair and 0 on the
+  // pairs assigned. Index 0 is a virtual column where each augmenting path starts.
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<double> u(n + 1, 0), v(n + 1, 0);
+  std::vector<int> owner(n + 1, 0), way(n + 1, 0);  // owner[j]: the row assigned to column j (1-based)
+  for (int i = 1; i <= n; ++i) {
+    owner[0] = i;
+    int j0 = 0;
+    std::vector<double> minv(n + 1, inf);
+    std::vector<char> used(n + 1, 0);
+    do {
+      used[j0] = 1;
+      const int i0 = owner[j0];
+      double delta = inf;
+      int j1 = 0;
+      for (int j = 1; j <= n; ++j) {
+        if (used[j]) continue;
+        const double reduced = cost[static_cast<std::size_t>(i0 - 1) * n + (j - 1)] - u[i0] - v[j];
+        if (reduced < minv[j]) minv[j] = reduced, way[j] = j0;
+        if (minv[j] < delta) delta = minv[j], j1 = j;
+      }
+      for (int j = 0; j <= n; ++j) {
+        if (used[j]) {
+          u[owner[j]] += delta, v[j] -= delta;
+        } else {
+          minv[j] -= delta;
+        }
+      }
+      j0 = j1;
+    } while (owner[j0] != 0);
+    do {
+      const int j1 = way[j0];
+      owner[j0] = owner[j1];
+      j0 = j1;
+    } while (j0 != 0);
+  }
+  std::vector<int> result(n, -1);
+  for (int j = 1; j <= n; ++j) result[owner[j] - 1] = j - 1;
+  return result;
+}
+
+SequenceBaker::SequenceBaker(const BakeOptions& options, SequenceOptions sequence, SunAngles angles,
+                             SunCones cones)
+    : options_(options), sequence_(sequence), angles_(angles), cones_(cones) {
+  checkLightCount(options.lights);
+  if (!usesWorkingGrid(options.method))
+    throw Error("a sequence is baked by cutting each frame (variance or median cut), not by the " +
+                toString(options.method) + " method");
+  if (options.lights > kMaxSequenceLights)
+    throw Error("a sequence takes at most " + std::to_string(kMaxSequenceLights) + " lights; asked for " +
+                std::to_string(options.lights));
+  if (!(sequence.smoothness >= 0 && sequence.smoothness <= kMaxSmoothness)) {
+    char got[32];
+    std::snprintf(got, sizeof got, "%g", sequence.smoothness);
+    throw Error(
+        "the smoothness is a number from 0 (keep a frame's cuts only while they are as good as fresh "
+        "ones) to " +
+        std::to_string(static_cast<int>(kMaxSmoothness)) + "; got " + got);
+  }
+  if (angles == SunAngles::Fit)
+    throw Error("a sequence's sun angles are spread or points: fitting them needs each frame evaluated");
+}
+
+// One way to cut a frame: its partition, lights and ids, and how far the lights moved from the last frame.
+struct SequenceBaker::Candidate {
+  Partition partition;
+  BakeResult result;
+  std::vector<int> regionIds;  // the id of each region
+  std::vector<Light> lights;   // by id
+  double spread = 0;           // partitionSpread / the probe's energy
+  double change = 0;           // sum over ids of share x (turn + change of share): matchCost
+};
+
+namespace {
+
+// How much light `id` changed from `p` to `q`: the angle it turned (radians; 0 when either is dark) plus
+// its relative change of share of its frame's energy (0 to 1). A light that keeps its share and turns 1
+// radian costs as much as one that doubles in place.
+double changeCost(const Light& p, double pTotal, const Light& q, double qTotal) {
+  const double a = pTotal > 0 ? luminance(p.rgb) / pTotal : 0, b = qTotal > 0 ? luminance(q.rgb) / qTotal : 0;
+  const double turn = a > 0 && b > 0 ? angleBetween(p.direction, q.direction) : 0.0;
+  return turn + (std::max(a, b) > 0 ? std::abs(a - b) / std::max(a, b) : 0.0);
+}
+
+double totalLuminance(const std::vector<Light>& lights) {
+  double sum = 0;
+  for (const Light& l : lights) sum += luminance(l.rgb);
+  return sum;
+}
+
+}  // namespace
+
+void SequenceBaker::finish(Candidate& c, const Probe& probe, const MomentTable& table) const {
+  c.result = lightsOfPartition(probe, table, options_.centroid, c.partition);
+  applySunAngles(angles_, nullptr, c.result.lights);
+  keepSunCones(cones_, c.result.lights);
+  // Each region's light (a region whose light is not positive has none: lights.cpp).
+  const int n = options_.lights;
+  const std::size_t regions = c.result.regions.size();
+  std::map<std::tuple<int, int, int, int>, const Light*> byRect;
+  for (const Light& l : c.result.lights) byRect[{l.rect.x0, l.rect.y0, l.rect.x1, l.rect.y1}] = &l;
+  std::vector<const Light*> regionLight(regions, nullptr);
+  for (std::size_t i = 0; i < regions; ++i) {
+    const Rect& r = c.result.regions[i];
+    if (auto found = byRect.find({r.x0, r.y0, r.x1, r.y1}); found != byRect.end())
+      regionLight[i] = found->second;
+  }
+  const double before = totalLuminance(previousLights_), now = totalLuminance(c.result.lights);
+  if (frames_ == 0) {
+    c.regionIds.resize(regions);
+    std::iota(c.regionIds.begin(), c.regionIds.end(), 0);
+  } else {
+    // Ids (rows) matched to the regions (columns; past the regions, none: the id is dark this frame) so
+    // that the lights change least. Also for the previous frame's cuts: when the sun crosses into a
+    // neighbouring region, its light keeps the sun.
+    std::vector<double> cost(static_cast<std::size_t>(n) * n, 0.0);
+    for (int id = 0; id < n; ++id)
+      for (std::size_t j = 0; j < regions; ++j)
+        cost[static_cast<std::size_t>(id) * n + j] =
+            changeCost(previousLights_[id], before, regionLight[j] ? *regionLight[j] : Light{}, now);
+    const std::vector<int> column = minimumCostAssignment(cost, n);
+    c.regionIds.assign(regions, -1);
+    for (int id = 0; id < n; ++id)
+      if (column[id] < static_cast<int>(regions)) c.regionIds[column[id]] = id;
+  }
+  c.lights.resize(n);
+  for (int id = 0; id < n; ++id) c.lights[id] = darkLight(previousLights_[id].direction);
+  for (std::size_t i = 0; i < regions; ++i)
+    if (regionLight[i]) c.lights[c.regionIds[i]] = *regionLight[i];
+  c.change = 0;
+  if (frames_ > 0 && before > 0 && now > 0)
+    for (int id = 0; id < n; ++id) {
+      const double weight =
+          std::max(luminance(previousLights_[id].rgb) / before, luminance(c.lights[id].rgb) / now);
+      c.change += weight * changeCost(previousLights_[id], before, c.lights[id], now);
+    }
+}
+
+SequenceFrame SequenceBaker::add(const Probe& probe) {
+  probe.requirePixels("baking");
+  const ProjectionKind projection = probe.projection().kind();
+  if (frames_ == 0) {
+    width_ = probe.width(), height_ = probe.height(), projection_ = projection;
+    previousLights_.assign(options_.lights, darkLight({0, 0, 1}));
+  } else if (probe.width() != width_ || probe.height() != height_ || projection != projection_) {
+    throw Error("frame " + std::to_string(frames_ + 1) + " is " +
+                describe(probe.width(), probe.height(), projection) + ", the sequence's first frame " +
+                describe(width_, height_, projection_) + ": every frame must be the same");
+  }
+  SequenceFrame frame;
+  Stopwatch t;
+  const MomentTable table(probe, options_.resolution.cellSize(width_), options_.centroid);
+  frame.timings.tablesMs = t.ms();
+
+  t.restart();
+  const std::unique_ptr<CutRule> rule = placementMethod(options_.method).rule(probe);
+  const double energy = table.totalEnergy() > 0 ? table.totalEnergy() : 1;
+  Candidate fresh;
+  fresh.partition = partitionSphere(table, *rule, options_.lights, horizonRow(probe, table, options_));
+  fresh.spread = partitionSpread(table, fresh.partition) / energy;
+  std::optional<Candidate> kept;
+  if (frames_ > 0)
+    if (auto replayed = replayPartition(table, *rule, previous_);
+        replayed && replayed->regions.size() >= fresh.partition.regions.size()) {
+      kept.emplace();
+      kept->partition = std::move(*replayed);
+      kept->spread = partitionSpread(table, kept->partition) / energy;
+    }
+  frame.timings.partitionMs = t.ms();
+
+  t.restart();
+  finish(fresh, probe, table);
+  if (kept) finish(*kept, probe, table);
+  // The previous cuts stay while they fit the frame nearly as well as its fresh cuts (spread within 1 +
+  // smoothness of theirs) and their lights change nearly as little as the fresh cuts' lights matched to the
+  // last frame's would (within 1 + smoothness: the sun crossing into a neighbouring region changes two
+  // lights wholly, ten times a frame's usual change).
+  const double within = 1 + sequence_.smoothness;
+  const bool keep =
+      kept && kept->change <= within * fresh.change + 1e-12 && kept->spread <= within * fresh.spread + 1e-12;
+  Candidate& chosen = keep ? *kept : fresh;
+  frame.timings.lightsMs = t.ms();
+
+  frame.recut = !keep;
+  frame.spread = chosen.spread;
+  frame.freshSpread = fresh.spread;
+  frame.totalRgb = chosen.result.totalRgb;
+  frame.notes = chosen.result.notes;
+  frame.lights = chosen.lights;
+  if (frames_ > 0) {
+    double weight = 0, sum = 0;
+    for (int id = 0; id < options_.lights; ++id) {
+      const Light &p = previousLights_[id], &q = frame.lights[id];
+      if (!(luminance(p.rgb) > 0) || !(luminance(q.rgb) > 0)) continue;
+      const double w = luminance(q.rgb);
+      weight += w, sum += w * angleBetween(p.direction, q.direction);
+    }
+    frame.motion = weight > 0 ? sum / weight : 0;
+  }
+  previous_ = std::move(chosen.partition);
+  previousLights_ = frame.lights;
+  ++frames_;
+  return frame;
+}
+
+FrameResponse judgeFrame(const Probe& probe, const std::vector<Light>& lights, int evaluatorWidth) {
+  const Evaluator evaluator(probe, kDiffuse | kShadow, EvaluatorOptions{evaluatorWidth});
+  FrameResponse r;
+  r.errors = evaluator.evaluate(lights);
+  for (std::size_t i = 0; i < evaluator.normals().size(); ++i) {
+    r.lamps.push_back(luminance(evaluator.lightsDiffuse(lights, evaluator.normals()[i])));
+    r.truth.push_back(luminance(evaluator.diffuseTruth()[i]));
+  }
+  for (std::size_t i = 0; i < evaluator.groundPoints().size(); ++i) {
+    r.lamps.push_back(luminance(evaluator.lightsShadow(lights, evaluator.groundPoints()[i])));
+    r.truth.push_back(luminance(evaluator.shadowTruth()[i]));
+  }
+  return r;
+}
+
+double rmsChange(const std::vector<double>& a, const std::vector<double>& b) {
+  if (a.size() != b.size() || a.empty()) throw Error("rmsChange: responses of different receivers");
+  double sum = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) sum += (a[i] - b[i]) * (a[i] - b[i]);
+  return std::sqrt(sum / a.size());
+}
+
+}  // namespace probelights
