@@ -24,11 +24,14 @@ const char* kUsage =
        probelights sample PROBE --bands B [options (sample)] [-o samples.json]
        probelights tradeoff PROBE [options (tradeoff)] [-o tradeoff.json] [--plot tradeoff.png]
        probelights evaluate PROBE LIGHTS.json [options (evaluate)] [-o errors.json]
+       probelights bake-sequence 'sky_####.exr' [options (bake-sequence)] [-o lights.json]
 
 PROBE is any image OpenImageIO reads. sh: real SH coefficients (Sloan order, orthonormal, Condon-Shortley
 phase, theta from +Z) of the radiance, or with --irradiance of the irradiance. sample: directions and pdfs
 from the SH importance sampler (Jarosz et al. 2009 warping with Berger's epsilon clamping) of the probe's
 luminance. evaluate: the errors of any lights (a bake's JSON, or anybody's in its layout) against the probe.
+bake-sequence: the frames of an animated world (#### the frame number, as Blender names a sequence) in the
+same N lights every frame, each light keeping its "id" from frame to frame.
 
 options (bake):
 )";
@@ -63,7 +66,9 @@ std::string usage() {
          "options\n" +
          evaluateOptionsUsage() + "  (and --projection, -o)\n\noptions (sh)\n" + shOptionsUsage() +
          "\noptions (sample)\n" + sampleOptionsUsage() +
-         "  (sh, sample: and --projection; JSON goes to -o FILE or standard output)\n";
+         "  (sh, sample: and --projection; JSON goes to -o FILE or standard output)\n\noptions "
+         "(bake-sequence)\n" +
+         sequenceOptionsUsage() + "  (and --projection, -o)\n";
 }
 
 }  // namespace
@@ -81,11 +86,9 @@ int probelights::cli::run(const std::vector<std::string>& args) {
       return args.empty() ? 2 : 0;
     }
     const std::map<std::string, int (*)(const std::vector<std::string>&)> commands{
-        {"bake", bakeCommand},
-        {"sh", shCommand},
-        {"sample", sampleCommand},
-        {"tradeoff", tradeoffCommand},
-        {"evaluate", evaluateCommand}};
+        {"bake", bakeCommand},         {"sh", shCommand},
+        {"sample", sampleCommand},     {"tradeoff", tradeoffCommand},
+        {"evaluate", evaluateCommand}, {"bake-sequence", sequenceCommand}};
     if (auto command = commands.find(args[0]); command != commands.end()) {
       std::vector<std::string> rest(args.begin() + 1, args.end());
       for (const auto& s : rest)
@@ -95,7 +98,7 @@ int probelights::cli::run(const std::vector<std::string>& args) {
       return code;
     }
     throw UsageError("unknown command '" + args[0] +
-                     "': use bake, sh, sample, tradeoff or evaluate (see probelights --help)");
+                     "': use bake, bake-sequence, sh, sample, tradeoff or evaluate (see probelights --help)");
   } catch (const Error& e) {
     std::fprintf(messages(), "probelights: error: %s\n", described(e).c_str());
     return 2;

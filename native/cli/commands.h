@@ -17,5 +17,7 @@ int tradeoffCommand(const std::vector<std::string>& argv);  // tradeoff_command.
 std::string tradeoffOptionsUsage();                         // its options, from tradeoff.h's table
 int evaluateCommand(const std::vector<std::string>& argv);  // evaluate_command.cpp
 std::string evaluateOptionsUsage();                         // its options, from request.h's evaluate table
+int sequenceCommand(const std::vector<std::string>& argv);  // sequence_command.cpp
+std::string sequenceOptionsUsage();                         // its options, from sequence_request.h's table
 
 }  // namespace probelights::cli

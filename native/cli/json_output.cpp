@@ -81,6 +81,13 @@ nlohmann::json sourceToJson(const std::string& path, const Probe& probe) {
   return root["source"];
 }
 
+nlohmann::json sequenceFrameToJson(const SequenceFrameReport& report) {
+  nlohmann::json root = nlohmann::json::object();
+  JsonWriter writer(root);
+  writeSequenceFrame(writer, report);
+  return root;
+}
+
 nlohmann::json tradeoffToJson(const TradeoffReport& report) {
   nlohmann::json root = nlohmann::json::object();
   JsonWriter writer(root);

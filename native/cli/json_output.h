@@ -10,6 +10,7 @@ namespace probelights::cli {
 
 nlohmann::json bakeToJson(const BakeReport& report);
 nlohmann::json tradeoffToJson(const TradeoffReport& report);
+nlohmann::json sequenceFrameToJson(const SequenceFrameReport& report);
 nlohmann::json sourceToJson(const std::string& path, const Probe& probe);
 
 }  // namespace probelights::cli

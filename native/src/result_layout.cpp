@@ -47,6 +47,60 @@ void writeSource(ResultWriter& w, const std::string& path, const Probe& probe) {
   w.end();
 }
 
+void writeLights(ResultWriter& w, const char* key, const std::vector<Light>& L, bool ids) {
+  std::vector<ResultColumn> columns{
+      {"direction", 3, ResultColumn::Kind::Number,
+       [&](std::size_t i, double* out) {
+         out[0] = L[i].direction.x, out[1] = L[i].direction.y, out[2] = L[i].direction.z;
+       }},
+      {"rgb", 3, ResultColumn::Kind::Number,
+       [&](std::size_t i, double* out) { out[0] = L[i].rgb[0], out[1] = L[i].rgb[1], out[2] = L[i].rgb[2]; }},
+      {"solid_angle", 1, ResultColumn::Kind::Number,
+       [&](std::size_t i, double* out) { out[0] = L[i].solidAngle; }},
+      {"angular_radius", 1, ResultColumn::Kind::Number,
+       [&](std::size_t i, double* out) { out[0] = L[i].angularRadius; }},
+      {"angle", 1, ResultColumn::Kind::Number, [&](std::size_t i, double* out) { out[0] = L[i].angle; }},
+      {"rect", 4, ResultColumn::Kind::Integer,
+       [&](std::size_t i, double* out) {
+         out[0] = L[i].rect.x0, out[1] = L[i].rect.y0, out[2] = L[i].rect.x1, out[3] = L[i].rect.y1;
+       }},
+      {"energy_share", 1, ResultColumn::Kind::Number,
+       [&](std::size_t i, double* out) { out[0] = L[i].energyShare; }}};
+  if (ids)
+    columns.insert(columns.begin(), {"id", 1, ResultColumn::Kind::Integer,
+                                     [](std::size_t i, double* out) { out[0] = static_cast<double>(i); }});
+  w.table(key, L.size(), columns);
+}
+
+void writeSequenceFrame(ResultWriter& w, const SequenceFrameReport& report) {
+  const SequenceFrame& f = report.lights;
+  w.integer("frame", report.frame);
+  writeSource(w, report.path, report.probe);
+  w.boolean("recut", f.recut);
+  w.number("motion", f.motion);
+  w.number("spread", f.spread);
+  w.number("fresh_spread", f.freshSpread);
+  writeLights(w, "lights", f.lights, true);
+  w.numbers("total_rgb", f.totalRgb);
+  w.begin("timings_ms");
+  w.number("load", report.loadMs);
+  w.number("tables", f.timings.tablesMs);
+  w.number("partition", f.timings.partitionMs);
+  w.number("lights", f.timings.lightsMs);
+  w.end();
+  std::vector<Note> notes = report.probe.report().notes;
+  notes.insert(notes.end(), f.notes.begin(), f.notes.end());
+  w.notes("notes", notes);
+  if (report.judged) {
+    w.begin("evaluation");
+    w.number("diffuse", report.judged->errors.diffuse);
+    w.number("shadow", report.judged->errors.shadow);
+    w.end();
+  } else {
+    w.null("evaluation");
+  }
+}
+
 void writeBake(ResultWriter& w, const BakeReport& report) {
   const Probe& probe = report.probe;
   const BakeOptions& o = report.options;
@@ -71,27 +125,7 @@ void writeBake(ResultWriter& w, const BakeReport& report) {
   w.text("setting", o.resolution.toString());
   w.integer("cell_size", r.cellSize);
   w.end();
-  const auto& L = r.lights;
-  w.table("lights", L.size(),
-          {{"direction", 3, ResultColumn::Kind::Number,
-            [&](std::size_t i, double* out) {
-              out[0] = L[i].direction.x, out[1] = L[i].direction.y, out[2] = L[i].direction.z;
-            }},
-           {"rgb", 3, ResultColumn::Kind::Number,
-            [&](std::size_t i, double* out) {
-              out[0] = L[i].rgb[0], out[1] = L[i].rgb[1], out[2] = L[i].rgb[2];
-            }},
-           {"solid_angle", 1, ResultColumn::Kind::Number,
-            [&](std::size_t i, double* out) { out[0] = L[i].solidAngle; }},
-           {"angular_radius", 1, ResultColumn::Kind::Number,
-            [&](std::size_t i, double* out) { out[0] = L[i].angularRadius; }},
-           {"angle", 1, ResultColumn::Kind::Number, [&](std::size_t i, double* out) { out[0] = L[i].angle; }},
-           {"rect", 4, ResultColumn::Kind::Integer,
-            [&](std::size_t i, double* out) {
-              out[0] = L[i].rect.x0, out[1] = L[i].rect.y0, out[2] = L[i].rect.x1, out[3] = L[i].rect.y1;
-            }},
-           {"energy_share", 1, ResultColumn::Kind::Number,
-            [&](std::size_t i, double* out) { out[0] = L[i].energyShare; }}});
+  writeLights(w, "lights", r.lights);
   w.numbers("total_rgb", r.totalRgb);
   if (report.bake.sources) {
     // The lamps took the sources alone (sources.h): total_rgb and the lights are the sources', and the

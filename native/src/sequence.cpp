@@ -145,7 +145,7 @@ void SequenceBaker::finish(Candidate& c, const Probe& probe, const MomentTable& 
       regionLight[i] = found->second;
   }
   const double before = totalLuminance(previousLights_), now = totalLuminance(c.result.lights);
-  if (frames_ == 0) {
+  if (frames_ == 0 || sequence_.independent) {
     c.regionIds.resize(regions);
     std::iota(c.regionIds.begin(), c.regionIds.end(), 0);
   } else {
@@ -198,7 +198,7 @@ SequenceFrame SequenceBaker::add(const Probe& probe) {
   fresh.partition = partitionSphere(table, *rule, options_.lights, horizonRow(probe, table, options_));
   fresh.spread = partitionSpread(table, fresh.partition) / energy;
   std::optional<Candidate> kept;
-  if (frames_ > 0)
+  if (frames_ > 0 && !sequence_.independent)
     if (auto replayed = replayPartition(table, *rule, previous_);
         replayed && replayed->regions.size() >= fresh.partition.regions.size()) {
       kept.emplace();

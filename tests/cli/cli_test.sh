@@ -198,5 +198,39 @@ assert all(0 <= l['angle'] <= math.pi for l in fit['lights']) and any(l['angle']
 assert all(l['angle'] == 0 for l in pts['lights'])
 assert fit['evaluation']['shadow'] < pts['evaluation']['shadow']
 PY"
+# bake-sequence: frames of 64 x 32, a sky of 1 and a bright pixel moving along the horizon (frames 1-4 of
+# seq_####.pfm), one of another size, and a pattern's mistakes.
+mkdir -p "$tmp/seq" "$tmp/odd"
+python3 - "$tmp" <<'PY'
+import struct, sys
+def frame(path, w, h, sun):
+    v = [1.0] * (w * h * 3)
+    for k in range(3): v[(h // 2 * w + sun) * 3 + k] = 500.0
+    with open(path, 'wb') as f: f.write(b'PF\n%d %d\n-1.0\n' % (w, h) + struct.pack('<%df' % len(v), *v))
+for n in range(1, 5): frame('%s/seq/seq_%04d.pfm' % (sys.argv[1], n), 64, 32, 10 + 3 * n)
+frame('%s/odd/o_0001.pfm' % sys.argv[1], 64, 32, 10); frame('%s/odd/o_0002.pfm' % sys.argv[1], 32, 16, 10)
+PY
+check "bake-sequence keeps N lights with ids, each frame's light exact" "'$bin' bake-sequence '$tmp/seq/seq_####.pfm' --lights 6 --evaluate -q -o '$tmp/seq.json' >'$tmp/seq.txt' && grep -q '^4 frames: ' '$tmp/seq.txt' && python3 - '$tmp/seq.json' <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert [f['frame'] for f in d['frames']] == [1, 2, 3, 4] and d['requested_lights'] == 6 and d['summary']['frames'] == 4
+for f in d['frames']:
+    assert [l['id'] for l in f['lights']] == list(range(6))
+    for k in range(3):
+        assert abs(sum(l['rgb'][k] for l in f['lights']) - f['total_rgb'][k]) <= 1e-9 * f['total_rgb'][k]
+    assert f['evaluation']['diffuse'] < 0.2 and f['source']['width'] == 64
+sun = [max(f['lights'], key=lambda l: l['rgb'][1])['id'] for f in d['frames']]
+assert len(set(sun)) == 1, sun
+PY"
+check "bake-sequence --frames takes a range" "'$bin' bake-sequence '$tmp/seq/seq_####.pfm' --frames 2-3 --lights 2 -q -o - | python3 -c 'import json,sys; assert [f[\"frame\"] for f in json.load(sys.stdin)[\"frames\"]] == [2, 3]'"
+expect_error "sequence without #" "has # where the frame number goes" bake-sequence "$tmp/seq/seq_0001.pfm"
+expect_error "sequence of no file" "no file matches" bake-sequence "$tmp/seq/none_####.pfm"
+expect_error "sequence with a missing frame" "frame 5 of 3-6 has no file" bake-sequence "$tmp/seq/seq_####.pfm" --frames 3-6
+expect_error "sequence of two sizes" "frame 2 is 32x16 latlong, the sequence's first frame 64x32 latlong" bake-sequence "$tmp/odd/o_####.pfm"
+expect_error "sequence by sh" "not by the sh method" bake-sequence "$tmp/seq/seq_####.pfm" --method sh
+expect_error "sequence smoothness" "the smoothness is a number from 0" bake-sequence "$tmp/seq/seq_####.pfm" --smoothness -1
+expect_error "sequence fitted angles" "spread or points" bake-sequence "$tmp/seq/seq_####.pfm" --sun-angles fit
+expect_error "sequence frames backwards" "the first frame before the last" bake-sequence "$tmp/seq/seq_####.pfm" --frames 4-2
+expect_error "sequence overwriting a frame" "" bake-sequence "$tmp/seq/seq_####.pfm" -o "$tmp/seq/seq_0002.pfm"
 echo "$passed passed, $failed failed"
 [[ $failed -eq 0 ]]

@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <iterator>
 #include <limits>
 #include <numeric>
@@ -15,6 +17,7 @@
 #include <random>
 
 #include "probelights/error.h"
+#include "probelights/sequence_request.h"
 #include "test_probes.h"
 
 namespace probelights {
@@ -249,6 +252,27 @@ TEST(SequenceBaker, AFrameOfAnotherSizeOrABadRequestIsRefused) {
   EXPECT_THROW(SequenceBaker(options(8), {std::numeric_limits<double>::infinity()}), Error);
   EXPECT_THROW(SequenceBaker(options(8), {std::nan("")}), Error);
   EXPECT_THROW(SequenceBaker(options(8), {}, SunAngles::Fit), Error);
+}
+
+TEST(SequenceFiles, FramesAreFoundAsBlenderNumbersThem) {
+  namespace fs = std::filesystem;
+  const fs::path dir =
+      fs::temp_directory_path() / ("probelights_seq_" + std::to_string(std::random_device{}()));
+  fs::create_directories(dir / "sky_0003.exr");  // a folder is not a frame
+  for (const char* name : {"sky_0001.exr", "sky_0002.exr", "sky_12345.exr", "sky_01.exr", "sky_00004.exr",
+                           "sky_0005.exr.bak", "other_0001.exr", "sky_00a1.exr"})
+    std::ofstream(dir / name) << "x";
+  const auto files = sequenceFiles((dir / "sky_####.exr").string());
+  std::vector<int> frames;
+  for (const auto& f : files) frames.push_back(f.frame);
+  EXPECT_EQ(frames, (std::vector<int>{1, 2, 12345}));
+  EXPECT_EQ(fs::path(files[1].path).filename(), "sky_0002.exr");
+  EXPECT_EQ(sequenceFiles((dir / "sky_####.exr").string(), std::array<int, 2>{2, 2}).size(), 1u);
+  EXPECT_THROW(sequenceFiles((dir / "sky_####.exr").string(), std::array<int, 2>{1, 3}), Error);
+  EXPECT_THROW(sequenceFiles((dir / "sky_##_##.exr").string()), Error);
+  EXPECT_THROW(sequenceFiles((dir / "sky_0001.exr").string()), Error);
+  EXPECT_THROW(sequenceFiles((dir / "none" / "sky_####.exr").string()), Error);
+  fs::remove_all(dir);
 }
 
 TEST(MinimumCostAssignment, IsTheBestOfEveryPermutation) {

@@ -21,6 +21,7 @@
 
 #include "probelights/placement.h"
 #include "probelights/probe.h"
+#include "probelights/sequence.h"
 #include "probelights/tradeoff.h"
 
 namespace probelights {
@@ -61,6 +62,21 @@ struct BakeReport {
 };
 
 void writeBake(ResultWriter& writer, const BakeReport& report);
+
+// A table of lights (a bake's "lights"); `ids`: each row's index first, as "id" (a sequence's lights).
+void writeLights(ResultWriter& writer, const char* key, const std::vector<Light>& lights, bool ids = false);
+
+// One frame of a sequence (sequence.h): frame, source, recut, motion, spread, fresh_spread, lights (with
+// id), total_rgb, timings_ms {load, tables, partition, lights}, notes, evaluation {diffuse, shadow} | null.
+struct SequenceFrameReport {
+  int frame = 0;
+  std::string path;
+  const Probe& probe;
+  const SequenceFrame& lights;
+  const FrameResponse* judged = nullptr;  // when evaluated
+  double loadMs = 0;
+};
+void writeSequenceFrame(ResultWriter& writer, const SequenceFrameReport& report);
 
 // The "source" object alone (every document about a probe starts with it).
 void writeSource(ResultWriter& writer, const std::string& path, const Probe& probe);

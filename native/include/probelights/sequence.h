@@ -32,7 +32,10 @@ struct SequenceOptions {
   // (within 1 + smoothness, in spread and in change). 0 keeps them only while they are as good; higher keeps
   // the lights' regions longer. The tradeoff is per-frame error against the lights' motion
   // (docs/results/sequences.md).
-  double smoothness = 0.5;
+  double smoothness = 0.1;
+  // Every frame baked alone, its lights in the bake's order, as baking each frame apart gives: what the
+  // sequence is measured against.
+  bool independent = false;
 };
 inline constexpr double kMaxSmoothness = 100;
 
