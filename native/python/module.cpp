@@ -39,6 +39,7 @@ PYBIND11_MODULE(_probelights, m) {
   defineBake(m);
   defineAnalysis(m);
   defineExport(m);
+  defineSequence(m);
   m.def(
       "touch_pages",
       [](py::array_t<float, py::array::c_style> buffer) {

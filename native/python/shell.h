@@ -106,6 +106,7 @@ std::string optionsDoc(const std::vector<TableOption<Target>>& table) {
 void defineBake(py::module_& m);      // bake, bake_file, bake_files, _command (bake_functions.cpp)
 void defineAnalysis(py::module_& m);  // evaluate, tradeoff, sh_project, sh_sample (analysis_functions.cpp)
 void defineExport(py::module_& m);    // gltf, usd (export_functions.cpp)
+void defineSequence(py::module_& m);  // SequenceBaker (sequence_functions.cpp)
 
 // A result's lights (the dict bake() returns under "lights": its direction and rgb columns; angle and
 // solid_angle when present) as the exporters (light_export.h) and the evaluator take them.
