@@ -7,6 +7,7 @@
 #include "json_output.h"
 #include "options.h"
 #include "probelights/image_file.h"
+#include "probelights/light_export.h"
 #include "probelights/sequence_request.h"
 #include "probelights/stopwatch.h"
 #include "write_whole.h"
@@ -15,12 +16,18 @@ namespace probelights::cli {
 
 std::string sequenceOptionsUsage() {
   return tableUsage(sequenceOptions(), SequenceRequest{}) +
+         usageLines("  --usd FILE", "one USD layer of the lights animated frame by frame (time samples)") +
+         usageLines("  --light-type sun|point", "the USD layer's lights (default sun)") +
+         usageLines("  --distance M", "point lights' metres from the origin (default 10)") +
+         usageLines("  --fps F", "the USD layer's frames per second (default 24)") +
          usageLines("  -q, --quiet", "no line per frame, only the summary");
 }
 
 int sequenceCommand(const std::vector<std::string>& argv) {
-  std::string output;
+  std::string output, usd;
   bool quiet = false;
+  ExportOptions exportOptions;
+  double fps = 24;
   SequenceRequest request;
   TableOptions<SequenceRequest> given(sequenceOptions());
   std::vector<Option> table;
@@ -30,6 +37,17 @@ int sequenceCommand(const std::vector<std::string>& argv) {
                    }});
   table.push_back({{"-o", "--output"}, [&](const std::string& v) { output = nonEmpty("-o", v); }});
   table.push_back(flag({"-q", "--quiet"}, [&] { quiet = true; }));
+  table.push_back({{"--usd"}, [&](const std::string& v) { usd = nonEmpty("--usd", v); }});
+  table.push_back({{"--light-type"},
+                   [&](const std::string& v) { exportOptions.kind = parseExportKind("--light-type", v); }});
+  table.push_back({{"--distance"}, [&](const std::string& v) {
+                     exportOptions.distance = checkedDistance("--distance", parseReal("--distance", v));
+                   }});
+  table.push_back({{"--fps"}, [&](const std::string& v) {
+                     fps = parseReal("--fps", v);
+                     if (!(fps > 0 && fps <= 1000))
+                       throw UsageError("--fps takes frames per second in (0, 1000], got '" + v + "'");
+                   }});
   const std::vector<std::string> positional = parseOptions(argv, table);
   if (positional.size() != 1)
     throw UsageError("bake-sequence takes one pattern of frames (sky_####.exr, quoted), got " +
@@ -38,7 +56,8 @@ int sequenceCommand(const std::vector<std::string>& argv) {
   given.apply(request);
   SequenceBaker baker = makeSequenceBaker(request);  // a bad request is refused before any file is read
   const std::vector<SequenceFile> files = sequenceFiles(pattern, request.frames);
-  for (const SequenceFile& f : files) refuseOverwritingProbe(f.path, {output});
+  for (const SequenceFile& f : files) refuseOverwritingProbe(f.path, {output, usd});
+  std::vector<std::pair<int, std::vector<Light>>> animation;  // for --usd
 
   const bool evaluate = request.judging.accuracy.evaluate;
   std::FILE* report = output == "-" ? messages() : stdout;  // JSON on standard output: the lines beside it
@@ -56,6 +75,7 @@ int sequenceCommand(const std::vector<std::string>& argv) {
     const SequenceFrame frame = baker.add(probe);
     std::optional<FrameResponse> judged;
     if (evaluate) judged = judgeFrame(probe, frame.lights, request.judging.accuracy.evaluatorWidth);
+    if (!usd.empty()) animation.emplace_back(file.frame, frame.lights);
     const double ms = frame.timings.tablesMs + frame.timings.partitionMs + frame.timings.lightsMs;
     bakeMs += ms, loadMs += frameLoadMs, recuts += frame.recut, motion += frame.motion;
     frames.push_back(
@@ -96,6 +116,9 @@ int sequenceCommand(const std::vector<std::string>& argv) {
       std::fprintf(report, ", flicker %.2f x the world's own change", lampChange / truthChange);
   }
   std::fprintf(report, "; %.1f ms a frame (+ %.1f ms to read it)\n", bakeMs / n, loadMs / n);
+  if (!usd.empty())
+    writeWhole(usd, usdAnimation(animation, exportOptions,
+                                 "probelights " PROBELIGHTS_VERSION " bake-sequence", fps));
   if (!output.empty()) {
     nlohmann::json root{{"generator", "probelights " PROBELIGHTS_VERSION},
                         {"pattern", pattern},

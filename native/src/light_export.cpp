@@ -215,6 +215,72 @@ std::string usdDocument(const std::vector<Light>& lights, const ExportOptions& o
   return out + "}\n";
 }
 
+std::string usdAnimation(const std::vector<std::pair<int, std::vector<Light>>>& frames,
+                         const ExportOptions& options, const std::string& generator, double framesPerSecond) {
+  if (frames.empty()) throw Error("an animated USD layer needs at least one frame");
+  const std::size_t n = frames.front().second.size();
+  for (const auto& [frame, lights] : frames)
+    if (lights.size() != n) throw Error("every frame of an animated USD layer has the same lights");
+  if (!(framesPerSecond > 0 && std::isfinite(framesPerSecond)))
+    throw Error("frames per second must be above 0");
+  const bool sun = options.kind == ExportKind::Sun;
+  const double d = options.distance;
+  constexpr double kSunDiameter = 0.53 * kPi / 180;  // as usdDocument draws a point light's radius
+  std::vector<std::vector<Written>> all;
+  for (const auto& [frame, lights] : frames) all.push_back(written(lights, options.kind, nullptr));
+  auto tuple = [](std::initializer_list<double> vs) { return numbers(vs, '(', ')'); };
+  // One attribute's time samples, { frame: value, ... }, a value a frame from `value(frame index, light)`.
+  auto samples = [&](const std::string& declaration, std::size_t i, auto&& value) {
+    std::string out = "        " + declaration + ".timeSamples = {\n";
+    for (std::size_t f = 0; f < frames.size(); ++f)
+      out += "            " + std::to_string(frames[f].first) + ": " + value(f, i) + ",\n";
+    return out + "        }\n";
+  };
+  auto angleOf = [&](std::size_t f, std::size_t i) {
+    const double a = frames[f].second[i].angle;
+    return std::isfinite(a) && a > 0 ? std::min(a, kPi) : 0.0;
+  };
+  std::string out = "#usda 1.0\n(\n    defaultPrim = \"probelights\"\n    doc = \"" + usdString(generator) +
+                    "\"\n    endTimeCode = " + std::to_string(frames.back().first) +
+                    "\n    metersPerUnit = 1\n    startTimeCode = " + std::to_string(frames.front().first) +
+                    "\n    timeCodesPerSecond = " + number(framesPerSecond) +
+                    "\n    upAxis = \"Z\"\n)\n\ndef Xform \"probelights\"\n{\n";
+  for (std::size_t i = 0; i < n; ++i) {
+    out += std::string(i ? "\n" : "") + "    def " + (sun ? "DistantLight" : "SphereLight") + " \"" +
+           all[0][i].name + "\"\n    {\n";
+    if (sun)
+      out += samples("float inputs:angle", i,
+                     [&](std::size_t f, std::size_t k) { return number(angleOf(f, k) * 180 / kPi); });
+    out += samples("color3f inputs:color", i, [&](std::size_t f, std::size_t k) {
+      const auto c = colourOf(all[f][k]);
+      return tuple({c[0], c[1], c[2]});
+    });
+    out += samples("float inputs:intensity", i, [&](std::size_t f, std::size_t k) {
+      return number(sun ? all[f][k].peak : 4 * all[f][k].peak * d * d);
+    });
+    out += "        bool inputs:normalize = 1\n";
+    if (!sun)
+      out += samples("float inputs:radius", i, [&](std::size_t f, std::size_t k) {
+        return number(d * std::sin(std::max(angleOf(f, k), kSunDiameter) / 2));
+      });
+    if (sun) {
+      out += samples("quatf xformOp:orient", i, [&](std::size_t f, std::size_t k) {
+        const auto q = turnZTo(all[f][k].direction);  // (x, y, z, w); USD writes (w, x, y, z)
+        return tuple({q[3], q[0], q[1], q[2]});
+      });
+      out += "        uniform token[] xformOpOrder = [\"xformOp:orient\"]\n";
+    } else {
+      out += samples("double3 xformOp:translate", i, [&](std::size_t f, std::size_t k) {
+        const Vec3& w = all[f][k].direction;
+        return tuple({w.x * d, w.y * d, w.z * d});
+      });
+      out += "        uniform token[] xformOpOrder = [\"xformOp:translate\"]\n";
+    }
+    out += "    }\n";
+  }
+  return out + "}\n";
+}
+
 std::string csvDocument(const std::vector<Light>& lights, const ExportOptions& options, const std::string&,
                         Rgb* clampedRgb) {
   const std::vector<Written> all = written(lights, options.kind, clampedRgb);

@@ -231,6 +231,7 @@ expect_error "sequence by sh" "not by the sh method" bake-sequence "$tmp/seq/seq
 expect_error "sequence smoothness" "the smoothness is a number from 0" bake-sequence "$tmp/seq/seq_####.pfm" --smoothness -1
 expect_error "sequence fitted angles" "spread or points" bake-sequence "$tmp/seq/seq_####.pfm" --sun-angles fit
 expect_error "sequence frames backwards" "the first frame before the last" bake-sequence "$tmp/seq/seq_####.pfm" --frames 4-2
+expect_error "sequence fps" "--fps takes frames per second" bake-sequence "$tmp/seq/seq_####.pfm" --usd "$tmp/s.usda" --fps 0
 expect_error "sequence overwriting a frame" "" bake-sequence "$tmp/seq/seq_####.pfm" -o "$tmp/seq/seq_0002.pfm"
 echo "$passed passed, $failed failed"
 [[ $failed -eq 0 ]]

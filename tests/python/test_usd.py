@@ -187,3 +187,46 @@ def test_usd_bad_requests(bundled_probe, tmp_path):
     none = pl.usd({"direction": np.zeros((0, 3)), "rgb": np.zeros((0, 3))})
     path, stage = stage_of(none, str(tmp_path), "none.usda")
     assert lights_of(stage) == [] and compliant(path) == []
+
+
+def test_a_sequence_reads_back_frame_by_frame(tmp_path):
+    """bake-sequence --usd: one layer whose lights carry a time sample a frame, each the JSON's light of the same
+    id at that frame; sampled between frames, OpenUSD interpolates (the lamp moves, it does not jump)."""
+    width, height = 128, 64
+    v = (np.arange(height) + 0.5) / height
+    u = (np.arange(width) + 0.5) / width
+    el, phi = math.pi / 2 - math.pi * v[:, None], 2 * math.pi * (0.5 - u[None, :])
+    d = np.stack([np.cos(el) * np.cos(phi), np.cos(el) * np.sin(phi), np.sin(el) * np.ones_like(phi)], -1)
+    for f in range(4):
+        sun = np.array([math.cos(0.2 * f), math.sin(0.2 * f), 0.5]) / math.hypot(1, 0.5)
+        img = np.where(d[..., 2:] > 0, 0.5, 0.1) * np.ones(3)
+        img[d @ sun > math.cos(math.radians(3))] += 800
+        with open(tmp_path / ("sky_%04d.pfm" % (f + 11)), "wb") as out:
+            out.write(b"PF\n%d %d\n-1.0\n" % (width, height))
+            out.write(np.ascontiguousarray(img[::-1]).astype("<f4").tobytes())
+    subprocess.run([CLI, "bake-sequence", str(tmp_path / "sky_####.pfm"), "--lights", "4", "-q", "-o",
+                    str(tmp_path / "seq.json"), "--usd", str(tmp_path / "seq.usda"), "--fps", "25"], check=True,
+                   capture_output=True)
+    frames = json.load(open(tmp_path / "seq.json"))["frames"]
+    path = str(tmp_path / "seq.usda")
+    assert compliant(path) == []
+    stage = Usd.Stage.Open(path)
+    assert (stage.GetStartTimeCode(), stage.GetEndTimeCode(), stage.GetTimeCodesPerSecond()) == (11, 14, 25)
+    suns = lights_of(stage)
+    assert len(suns) == 4
+    for frame in frames:
+        t = Usd.TimeCode(frame["frame"])
+        for sun, light in zip(suns, frame["lights"]):
+            matrix = np.array(UsdGeom.Xformable(sun).ComputeLocalToWorldTransform(t))
+            assert degrees_between(direction_of(matrix, (0, 0, 1)), np.array(light["direction"])) < 1e-4
+            api = UsdLux.LightAPI(sun)
+            given = api.GetIntensityAttr().Get(t) * np.array(api.GetColorAttr().Get(t))
+            assert given == pytest.approx(light["rgb"], rel=1e-6, abs=1e-7 * max(light["rgb"]))
+            assert UsdLux.DistantLight(sun).GetAngleAttr().Get(t) == pytest.approx(math.degrees(light["angle"]),
+                                                                                  rel=1e-6)
+    # Half-way between two frames the brightest lamp is half-way between its two directions.
+    sun_id = max(range(4), key=lambda k: frames[1]["lights"][k]["rgb"][1])
+    a, b = (np.array(frames[k]["lights"][sun_id]["direction"]) for k in (1, 2))
+    between = direction_of(np.array(UsdGeom.Xformable(suns[sun_id]).ComputeLocalToWorldTransform(Usd.TimeCode(12.5))),
+                           (0, 0, 1))
+    assert degrees_between(between, a) == pytest.approx(degrees_between(between, b), abs=0.05)

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "probelights/lights.h"
@@ -72,6 +73,15 @@ std::string gltfDocument(const std::vector<Light>& lights, const ExportOptions& 
 // as zero, as gltfDocument does (`clampedRgb`).
 std::string usdDocument(const std::vector<Light>& lights, const ExportOptions& options,
                         const std::string& generator, Rgb* clampedRgb = nullptr);
+
+// The lights of a sequence's frames (sequence.h: light k the same light in every frame) as one USD layer
+// whose lights carry time samples, a sample a frame at its frame number (startTimeCode and endTimeCode the
+// first and last, timeCodesPerSecond `framesPerSecond`): light k is the prim of usdDocument's light k, its
+// colour, intensity, angle (or radius) and orient (or translate) animated. No dome. Every frame must hold
+// as many lights as the first (an Error otherwise).
+std::string usdAnimation(const std::vector<std::pair<int, std::vector<Light>>>& frames,
+                         const ExportOptions& options, const std::string& generator,
+                         double framesPerSecond = 24);
 
 // A format the lights are written in, registered once in kExporters (light_export.cpp): the CLI's --NAME FILE
 // (and --NAME-dome when it takes a dome), the module's export(lights, "NAME", ...) and exporters. Adding one:
