@@ -39,6 +39,11 @@ std::vector<int> minimumCostAssignment(const std::vector<double>& cost, int n) {
   // Shortest augmenting paths with row and column potentials u, v (the Hungarian method in its O(n^3) form):
   // row i is added at each step, and the reduced costs cost - u - v stay >= 0 on every pair and 0 on the
   // pairs assigned. Index 0 is a virtual column where each augmenting path starts.
+  if (n < 0 || cost.size() != static_cast<std::size_t>(n) * n)
+    throw Error("an assignment's costs are an n x n matrix");
+  // A NaN or infinite cost would leave no column to extend a path to (the search would never end).
+  for (double c : cost)
+    if (!std::isfinite(c)) throw Error("an assignment's costs must be finite numbers");
   const double inf = std::numeric_limits<double>::infinity();
   std::vector<double> u(n + 1, 0), v(n + 1, 0);
   std::vector<int> owner(n + 1, 0), way(n + 1, 0);  // owner[j]: the row assigned to column j (1-based)

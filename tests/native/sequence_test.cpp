@@ -298,6 +298,8 @@ TEST(MinimumCostAssignment, IsTheBestOfEveryPermutation) {
       for (int i = 0; i < n; ++i) s += cost[i * n + column[i]];
       EXPECT_NEAR(s, best, 1e-9);
     }
+  EXPECT_THROW(minimumCostAssignment({0, 1, std::nan(""), 2}, 2), Error);
+  EXPECT_THROW(minimumCostAssignment({0, 1, std::numeric_limits<double>::infinity(), 2}, 2), Error);
 }
 
 }  // namespace

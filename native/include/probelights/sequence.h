@@ -95,7 +95,8 @@ FrameResponse judgeFrame(const Probe& probe, const std::vector<Light>& lights, i
 double rmsChange(const std::vector<double>& a, const std::vector<double>& b);
 
 // The assignment of rows to columns of a square cost matrix (n x n, row-major) that minimises the total
-// cost: result[row] = column. The Hungarian method with potentials (Kuhn 1955, Munkres 1957), O(n^3).
+// cost: result[row] = column. The Hungarian method with potentials (Kuhn 1955, Munkres 1957), O(n^3). A cost
+// that is not finite is an Error.
 std::vector<int> minimumCostAssignment(const std::vector<double>& cost, int n);
 
 }  // namespace probelights
