@@ -82,9 +82,10 @@ int sequenceCommand(const std::vector<std::string>& argv) {
         sequenceFrameToJson({file.frame, file.path, probe, frame, judged ? &*judged : nullptr, frameLoadMs}));
     if (judged) {
       diffuse += judged->errors.diffuse, shadow += judged->errors.shadow;
-      if (last)
-        lampChange += rmsChange(judged->lamps, last->lamps),
-            truthChange += rmsChange(judged->truth, last->truth);
+      if (last) {
+        lampChange += rmsChange(judged->lamps, last->lamps);
+        truthChange += rmsChange(judged->truth, last->truth);
+      }
       last = std::move(judged);
     }
     if (!quiet) {

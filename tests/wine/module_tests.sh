@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The Windows module's Python tests, run under Wine in the official embeddable CPython of one ABI (311 or 313):
-# tests/python/test_module.py (what needs no files or CLI), test_same_results.py (the Linux build's lights and errors,
+# tests/python/test_module.py and test_sequence.py (what needs no files or CLI), test_same_results.py (the Linux build's lights and errors,
 # within the C libraries' last bits) and the add-on's bpy-free rules, with the module taken out of the Windows zip
 # as a user gets it.
 #   tests/wine/module_tests.sh ABI BUILD_DIR
@@ -20,4 +20,4 @@ PYTHONPATH=$build/python python3 "$repo/tests/python/test_same_results.py" "$wor
 cd "$repo"
 PROBELIGHTS_MODULE_DIR=$work/probe_lights PROBELIGHTS_REFERENCE=$work/reference.json \
   bash "$here/run.sh" "$env" -m pytest -q -p no:cacheprovider -s tests/python/test_module.py \
-  tests/python/test_same_results.py tests/python/test_world_graph.py tests/python/test_text_fit.py
+  tests/python/test_sequence.py tests/python/test_same_results.py tests/python/test_world_graph.py tests/python/test_text_fit.py
