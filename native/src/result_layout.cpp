@@ -47,6 +47,25 @@ void writeSource(ResultWriter& w, const std::string& path, const Probe& probe) {
   w.end();
 }
 
+namespace {
+
+// A bake's (or a frame's) timings_ms {load, tables, partition, lights} and its notes: the probe's reading
+// notes, then the bake's own.
+void writeTimingsAndNotes(ResultWriter& w, double loadMs, const BakeTimings& t, const Probe& probe,
+                          const std::vector<Note>& bakeNotes) {
+  w.begin("timings_ms");
+  w.number("load", loadMs);
+  w.number("tables", t.tablesMs);
+  w.number("partition", t.partitionMs);
+  w.number("lights", t.lightsMs);
+  w.end();
+  std::vector<Note> notes = probe.report().notes;
+  notes.insert(notes.end(), bakeNotes.begin(), bakeNotes.end());
+  w.notes("notes", notes);
+}
+
+}  // namespace
+
 void writeLights(ResultWriter& w, const char* key, const std::vector<Light>& L, bool ids) {
   std::vector<ResultColumn> columns{
       {"direction", 3, ResultColumn::Kind::Number,
@@ -82,15 +101,7 @@ void writeSequenceFrame(ResultWriter& w, const SequenceFrameReport& report) {
   w.number("fresh_spread", f.freshSpread);
   writeLights(w, "lights", f.lights, true);
   w.numbers("total_rgb", f.totalRgb);
-  w.begin("timings_ms");
-  w.number("load", report.loadMs);
-  w.number("tables", f.timings.tablesMs);
-  w.number("partition", f.timings.partitionMs);
-  w.number("lights", f.timings.lightsMs);
-  w.end();
-  std::vector<Note> notes = report.probe.report().notes;
-  notes.insert(notes.end(), f.notes.begin(), f.notes.end());
-  w.notes("notes", notes);
+  writeTimingsAndNotes(w, report.loadMs, f.timings, report.probe, f.notes);
   if (report.judged) {
     w.begin("evaluation");
     w.number("diffuse", report.judged->errors.diffuse);
@@ -141,15 +152,7 @@ void writeBake(ResultWriter& w, const BakeReport& report) {
   } else {
     w.null("sources");
   }
-  w.begin("timings_ms");
-  w.number("load", report.loadMs);
-  w.number("tables", r.timings.tablesMs);
-  w.number("partition", r.timings.partitionMs);
-  w.number("lights", r.timings.lightsMs);
-  w.end();
-  std::vector<Note> notes = probe.report().notes;
-  notes.insert(notes.end(), r.notes.begin(), r.notes.end());
-  w.notes("notes", notes);
+  writeTimingsAndNotes(w, report.loadMs, r.timings, probe, r.notes);
   writeEvaluation(w, report.bake);
 }
 
