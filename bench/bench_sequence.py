@@ -44,7 +44,7 @@ def write_pfm(path, pixels):
         f.write(np.ascontiguousarray(pixels[::-1]).astype("<f4").tobytes())
 
 
-def make_day(probe, folder, frames):
+def make_day(probe, folder, frames, write=write_pfm, ext="pfm"):
     d = directions(*probe.shape[:2])
     for f in range(frames):
         s = (f + 0.5) / frames
@@ -53,7 +53,7 @@ def make_day(probe, folder, frames):
         out = probe.copy()
         out[d @ sun > math.cos(math.radians(1.0))] += np.array([3000, 2700, 2200], np.float32) * (
             0.3 + 0.7 * math.sin(math.pi * s))
-        write_pfm(folder / ("day_%04d.pfm" % (f + 1)), out * (0.6 + 0.4 * math.sin(math.pi * s)))
+        write(folder / ("day_%04d.%s" % (f + 1, ext)), out * (0.6 + 0.4 * math.sin(math.pi * s)))
 
 
 def make_video(probe, folder, frames):

@@ -132,7 +132,7 @@ def empty_scene():
     """The current scene emptied of objects, and no other worlds, images, lights, collections or node groups: a
     clean stage for each test (reading factory settings would also disable the add-on)."""
     for collection in (bpy.data.objects, bpy.data.lights, bpy.data.cameras, bpy.data.meshes, bpy.data.materials,
-                       bpy.data.collections, bpy.data.node_groups, bpy.data.images):
+                       bpy.data.collections, bpy.data.node_groups, bpy.data.images, bpy.data.actions):
         for item in list(collection):
             if getattr(item, "type", "") != "RENDER_RESULT":
                 collection.remove(item)

@@ -14,6 +14,7 @@ import bpy
 import numpy as np
 
 from . import cycles_settings, eevee_settings, light_kinds, native, render_cost
+from .animation import sequence_pixels
 from .blender_caps import preset, sun_cones, sun_profile
 from .errors import ProbeError
 from .light_objects import (baked_worlds, make_lights, remove_collection_if_empty, remove_lights, sun_height,
@@ -56,7 +57,12 @@ def world_probe(world, rendered=None):
     if source.image is None:
         pixels = rendered if rendered is not None else _rendered_probe(world)
         return pixels, "latlong", "rendered world (%s)" % source.render_reason, source, []
-    pixels = image_pixels(source.image)
+    if source.image.source == "SEQUENCE":  # the file of the scene's frame (Bake animation bakes them all)
+        frame = bpy.context.scene.frame_current
+        pixels = sequence_pixels(source.image_node, frame)
+        name = "image sequence '%s' frame %d" % (source.image.name, frame)
+    else:
+        pixels, name = image_pixels(source.image), "image '%s'" % source.image.name
     warnings = []
     h, w = pixels.shape[:2]
     if source.projection == "latlong" and abs(w - 2 * h) > 1:
@@ -64,7 +70,7 @@ def world_probe(world, rendered=None):
                         "another projection" % (source.image.name, w, h))
     if source.projection == "mirror-ball" and w != h:
         warnings.append("image '%s' is %dx%d, not square: a mirror ball image usually is" % (source.image.name, w, h))
-    return pixels, source.projection, "image '%s' (%s)" % (source.image.name, source.projection), source, warnings
+    return pixels, source.projection, "%s (%s)" % (name, source.projection), source, warnings
 
 
 def bake_world(context, settings, progress=lambda fraction: None, rendered=None, render_ms=0.0):
@@ -106,6 +112,31 @@ def bake_world(context, settings, progress=lambda fraction: None, rendered=None,
                          lights_diffuse=settings.replace_diffuse or sources,
                          lights_glossy=settings.replace_reflections or sources)
     residual = residual_world(world, baked["sources"]["residual"], source) if sources else None
+    more_notes, more_warnings = finish_world(context, settings, lights, source, residual)
+    lamps_ms = 1000 * (time.perf_counter() - bake_done)
+    # The panel's notes say what the core chose (note.h: their kind); the figures behind a choice stay in the
+    # core's JSON. Every other note is a warning, with its figures.
+    notes = [n["text"] for n in baked["notes"] if n["kind"] == "chosen"]
+    total = float(np.dot(baked["total_rgb"], LUM))
+    captured = float(np.sum(baked["lights"]["rgb"] @ LUM))
+    if sources:  # "% of the energy": the lamps' share of the world's light (the residual keeps the rest)
+        total += float(np.dot(baked["sources"]["residual_rgb"], LUM))
+    warnings += [n["text"] + (" (%s)" % n["detail"] if n["detail"] else "") for n in baked["notes"]
+                 if n["kind"] != "chosen"] + more_warnings
+    notes += more_notes
+    errors = baked["evaluation"] or {}
+    return {"count": len(lights), "energy": 100.0 * captured / total if total > 0 else 0.0,
+            "ms": 1000.0 * (time.perf_counter() - start),
+            "timings": {"probe": probe_ms, "bake": 1000 * (bake_done - start) - probe_ms, "lamps": lamps_ms},
+            "source": described, "notes": notes, "warnings": warnings,
+            "diffuse_error": 100.0 * errors.get("diffuse", -0.01), "shadow_error": 100.0 * errors.get("shadow", -0.01)}
+
+
+def finish_world(context, settings, lights, source, residual):
+    """What follows the lamps of any bake: the world's mix (it keeps only what the lamps do not replace), the
+    records a re-bake and the panel read, and the engines' settings the lamps need. Returns (notes, warnings)."""
+    scene = context.scene
+    world = scene.world
     insert_mix(world, keep_background=not settings.replace_background,
                keep_reflections=not settings.replace_reflections, keep_diffuse=not settings.replace_diffuse,
                residual=residual)
@@ -118,16 +149,7 @@ def bake_world(context, settings, progress=lambda fraction: None, rendered=None,
         world[CONES_KEY] = 1
     elif CONES_KEY in world:
         del world[CONES_KEY]
-    lamps_ms = 1000 * (time.perf_counter() - bake_done)
-    # The panel's notes say what the core chose (note.h: their kind); the figures behind a choice stay in the
-    # core's JSON. Every other note is a warning, with its figures.
-    notes = [n["text"] for n in baked["notes"] if n["kind"] == "chosen"]
-    total = float(np.dot(baked["total_rgb"], LUM))
-    captured = float(np.sum(baked["lights"]["rgb"] @ LUM))
-    if sources:  # "% of the energy": the lamps' share of the world's light (the residual keeps the rest)
-        total += float(np.dot(baked["sources"]["residual_rgb"], LUM))
-    warnings += [n["text"] + (" (%s)" % n["detail"] if n["detail"] else "") for n in baked["notes"]
-                 if n["kind"] != "chosen"]
+    notes, warnings = [], []
     offer = cycles_settings.advice(scene, len(lights))
     if offer:
         warnings.append(offer + " (Use Cycles settings for lamps in the panel)")
@@ -140,17 +162,12 @@ def bake_world(context, settings, progress=lambda fraction: None, rendered=None,
     noise = cycles_settings.noise_note(scene, len(lights))
     if noise:
         warnings.append(noise)
-    elif scene.render.engine == "CYCLES" and kind.render_cost:
+    elif scene.render.engine == "CYCLES" and light_kinds.kind(settings.light_type).render_cost:
         # What more suns cost the renders: a note (nothing is wrong with the bake), shown in the panel.
         advice = render_cost.count_note(len(lights), bpy.app.version)
         if advice:
             notes.append(advice)
-    errors = baked["evaluation"] or {}
-    return {"count": len(lights), "energy": 100.0 * captured / total if total > 0 else 0.0,
-            "ms": 1000.0 * (time.perf_counter() - start),
-            "timings": {"probe": probe_ms, "bake": 1000 * (bake_done - start) - probe_ms, "lamps": lamps_ms},
-            "source": described, "notes": notes, "warnings": warnings,
-            "diffuse_error": 100.0 * errors.get("diffuse", -0.01), "shadow_error": 100.0 * errors.get("shadow", -0.01)}
+    return notes, warnings
 
 
 def report_lines(summary):

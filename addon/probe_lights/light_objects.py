@@ -15,6 +15,7 @@ import numpy as np
 from mathutils import Matrix, Vector
 
 from . import light_kinds, world_mix
+from .lamp_keys import actions_of, drop_keyframes
 from .blender_caps import is_eevee
 from .conversion import point_parameters, sun_parameters
 
@@ -96,6 +97,7 @@ def _remove(collection, objects):
     if not objects:
         return
     data = [o.data for o in objects if o.data is not None and o.data.users == 1]
+    data += actions_of(objects + data)
     parents = [p for p in list(bpy.data.collections) + [s.collection for s in bpy.data.scenes]
                if p.children.get(collection.name) == collection]
     for p in parents:
@@ -184,6 +186,8 @@ def _drive_by(owner, path, index, expression, name, target):
         fcurve.modifiers.remove(m)
     driver = fcurve.driver
     driver.type = "SCRIPTED"
+    while len(driver.variables) > 1:  # a lamp's strength keyed by Bake animation read a second one
+        driver.variables.remove(driver.variables[-1])
     var = driver.variables[0] if len(driver.variables) else driver.variables.new()
     var.name, var.type = name, "SINGLE_PROP"
     var.targets[0].id_type, var.targets[0].id, var.targets[0].data_path = target
@@ -227,6 +231,7 @@ def make_lights(scene, world, baked, source, light_type=light_kinds.DEFAULT, dis
         if i < len(kept):
             obj = kept[i]
             data = obj.data
+            drop_keyframes(obj)
         else:
             name = "Probe Light %03d" % i
             data = bpy.data.lights.new(name, light_type)

@@ -81,6 +81,7 @@ def draw_panel(layout, context):
     row = layout.row()
     row.scale_y = 1.4
     row.operator("probe_lights.bake", icon="LIGHT_SUN")
+    layout.operator("probe_lights.bake_animation", icon="RENDER_ANIMATION")
     row = layout.row(align=True)
     sub = row.row(align=True)
     sub.enabled = has_mix(scene.world) or world_collection(scene.world) is not None

@@ -243,3 +243,33 @@ def _find(world, blender_version):
         source.rotation_socket = chain[0].inputs["Rotation"]
         source.rotation_inverted = chain[0].vector_type != "TEXTURE"
     return source
+
+
+def sequence_number(frame, start, duration, offset, cyclic):
+    """The number of the image an image sequence shows at scene frame `frame`, by its Image User's Start Frame,
+    Frames (duration), Offset and Cyclic, as Blender counts it (BKE_image_user_frame_get): the first image is 1 at
+    the start frame; before it the sequence holds image 0 and after its last frame the last image, unless cyclic;
+    the offset is added last. None when the sequence has no frames. Checked against Cycles' renders of the
+    sequence by tests/blender/test_animation.py."""
+    if duration <= 0:
+        return None
+    n = frame - start + 1
+    if cyclic:
+        n %= duration
+        if n == 0:
+            n = duration
+    n = min(max(n, 0), duration)
+    return n + offset
+
+
+def sequence_path(path, number):
+    """The file of image `number` of the sequence whose file `path` names one image: the last run of digits in its
+    file name (not its folder) replaced by the number, padded to as many digits, a negative number as 0
+    (Blender's BLI_path_sequence_decode / encode). None when the file name has no digits."""
+    cut = max(path.rfind("/"), path.rfind("\\")) + 1
+    folder, name = path[:cut], path[cut:]
+    stem, dot, ext = name.rpartition(".") if "." in name else (name, "", "")
+    digits = len(stem) - len(stem.rstrip("0123456789"))
+    if digits == 0:
+        return None
+    return folder + stem[:len(stem) - digits] + str(max(number, 0)).zfill(digits) + dot + ext

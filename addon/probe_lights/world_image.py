@@ -102,6 +102,7 @@ class WorldRender:
         fd, self.path = tempfile.mkstemp(suffix=".exr", prefix="probe_lights_world_")
         os.close(fd)
         self._state = "ready"
+        self._user_scene = self._user_frame = None
         self._display = None
         self._switch = None
         scene, cam_data, cam = self.scene, self.cam_data, self.cam
@@ -127,8 +128,16 @@ class WorldRender:
         scene.cycles.use_denoising = False
         scene.cycles.device = "CPU"
 
-    def render(self):
-        """Renders now (blocking) and returns the pixels."""
+    def render(self, frame=None):
+        """Renders now (blocking) and returns the pixels; of scene frame `frame` when given (the world's keyframes
+        and drivers are evaluated there)."""
+        if frame is not None:
+            # Cycles evaluates the world's keyframes at the frame of the scene in the context, not at the render
+            # scene's (bpy 4.5.15, 5.3.0): both are set, the context scene's put back by close().
+            user = bpy.context.scene
+            if self._user_frame is None and user != self.scene:
+                self._user_scene, self._user_frame = user, user.frame_current
+            user.frame_current = self.scene.frame_current = frame
         bpy.ops.render.render(write_still=True, scene=self.scene.name)
         self._state = "done"
         return self.pixels()
@@ -181,6 +190,12 @@ class WorldRender:
             bpy.data.images.remove(image)
 
     def close(self):
+        if self._user_frame is not None:
+            try:
+                self._user_scene.frame_set(self._user_frame)
+            except ReferenceError:
+                pass
+            self._user_frame = None
         for handlers, f in ((bpy.app.handlers.render_complete, self._complete),
                             (bpy.app.handlers.render_cancel, self._cancel)):
             if f in handlers:

@@ -8,6 +8,7 @@ import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "harness"))
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "addon"))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))  # rgbe.py
 import harness  # noqa: E402
 import addon_common  # noqa: E402,F401  (installs the add-on before the subjects load)
 from addon_bake import (  # noqa: E402
@@ -46,6 +47,11 @@ from addon_render_settings import (  # noqa: E402
 from addon_memory import (  # noqa: E402
     test_the_read_buffer_is_reused_only_when_nobody_holds_it,
     test_the_cores_table_buffers_are_given_back_a_minute_after_the_last_bake)
+from addon_animation import (  # noqa: E402
+    test_an_image_sequence_bakes_into_keyed_lamps_that_keep_their_ids,
+    test_a_bake_of_an_image_sequence_reads_the_scenes_frame_and_restore_takes_the_keys,
+    test_sequence_frames_are_the_ones_cycles_renders,
+    test_an_animated_sky_is_rendered_frame_by_frame)
 from addon_install import (  # noqa: E402
     test_another_platforms_zip_is_refused_and_the_installed_one_kept,
     test_panel_draws_at_default_width_in_this_blender)
@@ -70,4 +76,7 @@ harness.run([test_register_unregister, test_real_probes_bake_with_their_energy,
              test_the_cores_table_buffers_are_given_back_a_minute_after_the_last_bake,
              test_inputs_that_are_not_what_they_claim, test_thousands_of_lamps_go_in_one_batch,
              test_panel_draws_at_default_width_in_this_blender,
+             test_an_image_sequence_bakes_into_keyed_lamps_that_keep_their_ids,
+             test_a_bake_of_an_image_sequence_reads_the_scenes_frame_and_restore_takes_the_keys,
+             test_sequence_frames_are_the_ones_cycles_renders, test_an_animated_sky_is_rendered_frame_by_frame,
              test_another_platforms_zip_is_refused_and_the_installed_one_kept])

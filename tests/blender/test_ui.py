@@ -197,6 +197,47 @@ def test_tradeoff_shows_progress_and_stops_on_escape():
     assert len({r.lights for r in settings.tradeoff}) == 7
 
 
+def test_bake_animation_shows_progress_and_escape_changes_nothing():
+    """From the button Bake animation bakes a frame a step and Esc stops it with nothing changed; left alone it
+    keys the lamps on every frame."""
+    import tempfile
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
+    from rgbe import write_hdr
+    from probe_lights import light_objects
+    import numpy as np
+    win = bpy.context.window_manager.windows[0]
+    folder = tempfile.mkdtemp()
+    for f in range(1, 13):
+        a = np.full((32, 64, 3), 0.05, np.float32)
+        a[10, 4 * f] = 500.0
+        write_hdr(os.path.join(folder, "sky_%04d.hdr" % f), a)
+    world = setup_world()
+    env = world.node_tree.nodes["Background"].inputs["Color"].links[0].from_node
+    env.image = bpy.data.images.load(os.path.join(folder, "sky_0001.hdr"))
+    env.image.source = "SEQUENCE"
+    env.image_user.frame_duration, env.image_user.use_cyclic = 12, True
+    with window_override():  # 2000 frames of the cyclic sequence: Esc comes long before the end
+        assert bpy.ops.probe_lights.bake_animation("INVOKE_DEFAULT", frame_start=1, frame_end=2000,
+                                                   count=4) == {"RUNNING_MODAL"}
+    yield
+    win.event_simulate(type="ESC", value="PRESS")
+    win.event_simulate(type="ESC", value="RELEASE")
+    for _ in range(10):
+        yield
+    assert not light_objects.baked_lights(world) and not bpy.data.actions, "Esc did not stop Bake animation"
+    with window_override():
+        assert bpy.ops.probe_lights.bake_animation("INVOKE_DEFAULT", frame_start=1, frame_end=12,
+                                                   count=4) == {"RUNNING_MODAL"}
+    for _ in range(50):
+        yield
+        if light_objects.baked_lights(world):
+            break
+    lamps = light_objects.baked_lights(world)
+    assert len(lamps) == 4 and all(o.animation_data.action is not None for o in lamps)
+    print("  Bake animation stopped by Esc, then keyed 4 lamps: %s" % bpy.context.scene.probe_lights.last_report)
+    bpy.ops.probe_lights.restore()
+
+
 def test_panel_fits_the_default_width():
     """The World properties panel, in the default layout's Properties editor at its default width, after a bake
     with warnings and a tradeoff: no line, button or number is cut off (every label is measured in the interface
@@ -286,7 +327,7 @@ def steps():
     harness.install_addon(ARGS.zip)
     for test in (test_button_bake_then_undo, test_a_rendered_world_bakes_as_a_render_job_that_escape_cancels,
                  test_tradeoff_shows_progress_and_stops_on_escape,
-                 test_panel_fits_the_default_width, test_sidebar_fits_its_default_width):
+                 test_bake_animation_shows_progress_and_escape_changes_nothing, test_panel_fits_the_default_width, test_sidebar_fits_its_default_width):
         try:
             result = test()
             if result is not None:

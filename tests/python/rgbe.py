@@ -40,3 +40,21 @@ def read_hdr(path):
     exponent = rgbe[..., 3].astype(np.int32)
     scale = np.where(exponent > 0, np.ldexp(1.0, exponent - 136), 0.0)
     return (rgbe[..., :3] * scale[..., None]).astype(np.float32)
+
+
+def write_hdr(path, pixels):
+    """Writes H x W x 3 linear pixels (top row first) as a flat (not run-length) RGBE file, which Radiance
+    readers take for any width: each pixel's largest channel m = f * 2^e (f in [0.5, 1)) sets the shared exponent
+    e + 128, its channels stored as c * 256 / 2^e."""
+    a = np.maximum(np.asarray(pixels, np.float64)[..., :3], 0.0)
+    height, width = a.shape[:2]
+    peak = a.max(axis=-1)
+    mantissa, exponent = np.frexp(peak)
+    lit = peak > 1e-32
+    rgbe = np.zeros((height, width, 4), np.uint8)
+    scale = np.where(lit, 256.0 / np.ldexp(1.0, exponent), 0.0)
+    rgbe[..., :3] = np.minimum(a * scale[..., None], 255).astype(np.uint8)
+    rgbe[..., 3] = np.where(lit, exponent + 128, 0)
+    with open(path, "wb") as f:
+        f.write(b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y %d +X %d\n" % (height, width))
+        f.write(rgbe.tobytes())

@@ -256,3 +256,19 @@ def test_render_cost_advice_follows_the_running_version():
     # time with one.
     assert old == "More than 32 suns: noisier renders, no closer in Cycles 3.4", old
     assert new == "More than 32 suns: slower renders, no closer in Cycles 4.5", new
+
+
+def test_image_sequence_frames_are_counted_as_blender_counts_them():
+    # Start frame 5, 10 images, offset 2: image 1 (+2) at frame 5; before it image 0, after its end the last one.
+    assert [wg.sequence_number(f, 5, 10, 2, False) for f in (1, 4, 5, 6, 14, 15, 16)] == [2, 2, 3, 4, 12, 12, 12]
+    # Cyclic: the images repeat before and after.
+    assert [wg.sequence_number(f, 5, 10, 2, True) for f in (1, 4, 5, 6, 14, 15, 16, 30)] == [9, 12, 3, 4, 12, 3, 4, 8]
+    assert wg.sequence_number(3, 1, 0, 0, False) is None
+
+
+def test_image_sequence_files_are_named_as_blender_names_them():
+    assert wg.sequence_path("/a/b2/sky_0001.exr", 12) == "/a/b2/sky_0012.exr"  # the folder's digits stay
+    assert wg.sequence_path("C:\\x7\\s12.hdr", 3) == "C:\\x7\\s03.hdr"
+    assert wg.sequence_path("/a/sky_9.exr", 123) == "/a/sky_123.exr"  # more digits than the padding
+    assert wg.sequence_path("/a/sky.0001.exr", -2) == "/a/sky.0000.exr"
+    assert wg.sequence_path("/a/sky.exr", 3) is None

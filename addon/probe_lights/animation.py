@@ -1,0 +1,277 @@
+"""Bake animation: a world whose light changes over time, baked frame by frame into one rig of lamps that keep
+their identity, their direction, colour, strength and angle keyframed on every frame.
+
+    world --frame_source--> frame f's pixels: an image sequence's file for f (read as Blender reads the image), or
+                            the world rendered at f (Sky Texture, keyframed or driven nodes, a movie)
+          --native SequenceBaker.add--> the same N lights every frame, light k the same light (sequence.h: cuts
+                            warm-started from the last frame's, lights matched by a minimum-cost assignment)
+          --make_lights (frame 1) + keyframes--> lamp k carries light k on every frame
+
+What the lamps already follow by drivers (the Background strength, one Mapping node's rotation) is followed the
+same way here, so only the probe's pixels are baked per frame.
+"""
+
+import math
+import os
+import time
+
+import bpy
+import numpy as np
+from mathutils import Matrix
+
+from . import light_kinds, native
+from .blender_caps import sun_cones
+from .conversion import point_parameters, sun_parameters
+from .errors import ProbeError
+from .lamp_keys import ENERGY_KEY, drive_energy_by_key
+from .light_objects import make_lights
+from .properties import cut_method
+from .world_graph import ProbeSource, find_probe, sequence_number, sequence_path
+from .world_image import WorldRender, image_pixels
+
+RENDER_WIDTH = 512  # lat-long width an animated world without an image sequence is rendered at, a frame
+MAX_FRAMES = 100000
+
+
+def _fcurves(animation_data):
+    """The F-curves of an ID's action: Blender 5 reaches them through the action's slot (layered actions); 4.4 and
+    4.5 have both ways; before 4.4 only action.fcurves (measured in bpy 4.2.23, 4.5.15 and 5.3.0)."""
+    action = animation_data.action if animation_data is not None else None
+    if action is None:
+        return []
+    if hasattr(action, "fcurves"):
+        return list(action.fcurves)
+    from bpy_extras import anim_utils
+    bag = anim_utils.action_get_channelbag_for_slot(action, animation_data.action_slot)
+    return list(bag.fcurves) if bag is not None else []
+
+
+def animated_paths(tree, seen=None):
+    """The data paths of a node tree (and the node groups in it) that keyframes or drivers change over time."""
+    seen = set() if seen is None else seen
+    if tree is None or tree in seen:
+        return []
+    seen.add(tree)
+    ad = tree.animation_data
+    paths = [d.data_path for d in ad.drivers] + [f.data_path for f in _fcurves(ad)] if ad is not None else []
+    for node in tree.nodes:
+        if node.bl_idname == "ShaderNodeGroup":
+            paths += ["%s: %s" % (node.name, p) for p in animated_paths(node.node_tree, seen)]
+    return paths
+
+
+def _followed(source):
+    """The paths the lamps of a single bake follow by drivers (the Background strength, one Mapping rotation)."""
+    return {s.path_from_id("default_value") for s in (source.strength_socket, source.rotation_socket)
+            if s is not None}
+
+
+def sequence_pixels(node, frame):
+    """The pixels an Environment Texture whose image is a sequence shows at scene frame `frame`: its file for that
+    frame (world_graph.sequence_number, sequence_path), read through Blender in the sequence's colour space."""
+    image, user = node.image, node.image_user
+    number = sequence_number(frame, user.frame_start, user.frame_duration, user.frame_offset, user.use_cyclic)
+    path = sequence_path(bpy.path.abspath(image.filepath, library=image.library), number or 0)
+    if number is None or path is None:
+        raise ProbeError("image sequence '%s' has no frames (set Frames on its Environment Texture)" % image.name)
+    if not os.path.isfile(path):
+        raise ProbeError("frame %d: image sequence '%s' has no file %s" % (frame, image.name, path))
+    frame_image = bpy.data.images.load(path, check_existing=False)
+    try:
+        frame_image.colorspace_settings.name = image.colorspace_settings.name
+        return np.array(image_pixels(frame_image))
+    finally:
+        bpy.data.images.remove(frame_image)
+
+
+class FrameSource:
+    """Where frame f's probe comes from: an image sequence's files (read through Blender, so its colour space
+    counts), or the world rendered at frame f by a panoramic Cycles camera (on a copy of the world)."""
+
+    def __init__(self, world, render_width=None):
+        if world is None:
+            raise ProbeError("the scene has no world: add one in World properties")
+        try:
+            self.source = find_probe(world, bpy.app.version)
+        except ValueError as e:
+            raise ProbeError(str(e))
+        image = self.source.image
+        self._render = None
+        self.projection = self.source.projection if image is not None else "latlong"
+        changing = sorted(set(animated_paths(world.node_tree)) - (_followed(self.source) if image else set()))
+        if image is not None and image.source == "SEQUENCE" and not changing:
+            self.kind, self.described = "files", "image sequence '%s'" % image.name
+            return
+        if world.animation_data is not None and (world.animation_data.drivers or _fcurves(world.animation_data)):
+            changing.append("world")
+        if image is not None and image.source == "MOVIE":
+            changing.append("movie")
+        if not changing:
+            follows = " (the lamps follow its strength and rotation)" if image is not None else ""
+            raise ProbeError("world '%s' does not change over time%s: use Bake probe to lights" % (world.name,
+                                                                                                    follows))
+        self.kind = "render"
+        self.described = "world rendered each frame (%s)" % ("a movie" if "movie" in changing else
+                                                             "animated: " + ", ".join(changing[:2]))
+        # The rendered frames carry the whole world: strength and rotation are in the pixels, not followed.
+        self.source = ProbeSource(render_reason="animated")
+        self._render = WorldRender(world, render_width or RENDER_WIDTH)
+
+    def pixels(self, frame):
+        """Frame `frame`'s probe, float32 H x W x C."""
+        if self.kind == "render":
+            return self._render.render(frame)
+        return sequence_pixels(self.source.image_node, frame)
+
+    def close(self):
+        if self._render is not None:
+            self._render.close()
+            self._render = None
+
+
+def sequence_options(scene, settings, smoothness):
+    """The core's SequenceBaker options for the panel's settings (the sequence takes the cut methods and angles
+    that keep lights comparable from frame to frame: no refit, spread angles)."""
+    method = cut_method(settings.method)
+    if method not in ("variance", "median-cut"):
+        raise ProbeError("Bake animation cuts by variance or median cut: set Method to one of them")
+    soft = light_kinds.kind(settings.light_type).soft
+    return {"lights": settings.count, "method": method, "resolution": settings.resolution,
+            "sun_angles": "spread" if soft and settings.shadows != "HARD" else "points",
+            "sun_cones": sun_cones(scene.render.engine, bpy.app.version), "nonfinite": settings.non_finite,
+            "smoothness": smoothness}
+
+
+def frame_range(scene, start, end):
+    """(first, last) frame to bake: the given ones, or the scene's range where 0."""
+    first, last = start or scene.frame_start, end or scene.frame_end
+    if last < first:
+        raise ProbeError("the frame range %d-%d ends before it starts" % (first, last))
+    if last - first + 1 > MAX_FRAMES:
+        raise ProbeError("%d frames: Bake animation takes at most %d" % (last - first + 1, MAX_FRAMES))
+    return first, last
+
+
+def keyframe_lamps(scene, lamps, frames, kind, distance):
+    """Keys lamp k with light k of every frame: location and rotation (a quaternion kept on one side, so the
+    interpolation turns the short way), colour, strength (before the world's strength: ENERGY_KEY when the energy
+    follows the Strength by a driver) and a sun's angle. A dark light keeps its direction and colour."""
+    version = bpy.app.version
+    for k, obj in enumerate(lamps):
+        obj.rotation_mode = "QUATERNION"
+        radius = obj.location.length
+        data = obj.data
+        driven = data.animation_data is not None and any(d.data_path == "energy" for d in data.animation_data.drivers)
+        energy_path = '["%s"]' % ENERGY_KEY if driven else "energy"
+        if driven:
+            drive_energy_by_key(data, ENERGY_KEY)
+        last_q = last_colour = None
+        for f, frame in frames:
+            direction = frame["lights"]["direction"][k]
+            rgb = frame["lights"]["rgb"][k]
+            if kind.soft:
+                p = sun_parameters(direction, rgb, frame["lights"]["angle"][k], version)
+                q = Matrix(p["rotation"].tolist()).to_quaternion()
+                if last_q is not None and q.dot(last_q) < 0:
+                    q.negate()
+                obj.location, obj.rotation_quaternion, last_q = tuple(radius * np.asarray(direction)), q, q
+                data.angle = p["angle"]
+                data.keyframe_insert("angle", frame=f)
+                obj.keyframe_insert("rotation_quaternion", frame=f)
+            else:
+                p = point_parameters(direction, rgb, distance)
+                obj.location = p["location"]
+            obj.keyframe_insert("location", frame=f)
+            colour = p["color"] if p["energy"] > 0 or last_colour is None else last_colour
+            data.color, last_colour = colour, colour
+            data.keyframe_insert("color", frame=f)
+            if driven:
+                data[ENERGY_KEY] = p["energy"]
+            else:
+                data.energy = p["energy"]
+            data.keyframe_insert(energy_path, frame=f)
+        for owner in (obj, data):
+            for fcurve in _fcurves(owner.animation_data):
+                for point in fcurve.keyframe_points:  # sampled light: straight between frames, no overshoot
+                    point.interpolation = "LINEAR"
+
+
+class AnimationBake:
+    """A sequence bake in steps (an operator's timer runs one frame a step; Esc stops between steps): nothing in
+    the scene changes until finish()."""
+
+    def __init__(self, context, settings, smoothness=0.1, start=0, end=0, render_width=None):
+        scene = context.scene
+        self.settings = settings
+        self.first, self.last = frame_range(scene, start, end)
+        self.options = sequence_options(scene, settings, smoothness)
+        m = native.module()
+        try:
+            self.baker = m.SequenceBaker(**self.options)
+        except m.Error as e:
+            raise ProbeError(native.in_panel_words(e)) from None
+        self.frames_source = FrameSource(scene.world, render_width)
+        self.warnings = []
+        if settings.lamps_take == "SOURCES":
+            self.warnings.append("Bake animation: the lamps take all of the light (a residual world does not move)")
+        if settings.count_mode == "TOLERANCE":
+            self.warnings.append("Bake animation makes the Count's %d lamps (Max error is for single bakes)"
+                                 % settings.count)
+        self.next = self.first
+        self.frames = []
+        self.read_s = self.bake_s = 0.0
+
+    @property
+    def total(self):
+        return self.last - self.first + 1
+
+    def step(self):
+        """Reads and bakes the next frame; True when every frame is baked."""
+        t0 = time.perf_counter()
+        pixels = self.frames_source.pixels(self.next)
+        t1 = time.perf_counter()
+        m = native.module()
+        try:
+            frame = self.baker.add(pixels, projection=self.frames_source.projection, frame=self.next)
+        except m.Error as e:
+            raise ProbeError("frame %d: %s" % (self.next, native.in_panel_words(e))) from None
+        self.read_s += t1 - t0
+        self.bake_s += time.perf_counter() - t1
+        self.frames.append((self.next, frame))
+        self.next += 1
+        return self.next > self.last
+
+    def close(self):
+        self.frames_source.close()
+
+    def finish(self, context):
+        """Makes the lamps from the first frame and keys every frame; returns the summary."""
+        from .bake import finish_world  # the world's mix and settings, as a single bake leaves them
+        self.close()
+        scene, settings = context.scene, self.settings
+        t0 = time.perf_counter()
+        kind = light_kinds.kind(settings.light_type)
+        source = self.frames_source.source
+        lamps = make_lights(scene, scene.world, self.frames[0][1], source, settings.light_type, settings.distance,
+                            lights_diffuse=settings.replace_diffuse, lights_glossy=settings.replace_reflections)
+        keyframe_lamps(scene, lamps, self.frames, kind, settings.distance)
+        notes, warnings = finish_world(context, settings, lamps, source, residual=None)
+        warnings = self.warnings + warnings
+        keys_s = time.perf_counter() - t0
+        motion = [f["motion"] for _, f in self.frames[1:]]
+        recut = sum(1 for _, f in self.frames[1:] if f["recut"])
+        return {"count": len(lamps), "frames": len(self.frames), "source": self.frames_source.described,
+                "first": self.first, "last": self.last, "recut": recut,
+                "motion_deg": math.degrees(float(np.mean(motion))) if motion else 0.0,
+                "read_s": self.read_s, "bake_s": self.bake_s, "keys_s": keys_s, "notes": notes,
+                "warnings": warnings}
+
+
+def report_line(summary):
+    s = summary
+    return ("Baked frames %d-%d of %s into %d lights in %.2f s (%s %.2f s, bake %.2f s, keys %.2f s); lamps move "
+            "%.1f degrees a frame, %d of %d frames cut afresh" % (
+                s["first"], s["last"], s["source"], s["count"], s["read_s"] + s["bake_s"] + s["keys_s"],
+                "render" if "rendered" in s["source"] else "read", s["read_s"], s["bake_s"], s["keys_s"],
+                s["motion_deg"], s["recut"], s["frames"]))
+

@@ -1,0 +1,122 @@
+"""The Bake animation operator: the panel's bake settings over a frame range, one frame a step (progress in the
+status bar, Esc stops with nothing changed); the lamps are made and keyed once every frame is baked."""
+
+import bpy
+
+from .animation import AnimationBake, report_line
+from .errors import ProbeError
+from .properties import SETTING_NAMES, bake_settings
+
+
+class PROBE_LIGHTS_OT_bake_animation(bpy.types.Operator):
+    """Bake a world that changes over time (an image sequence, an animated sky, keyframed world nodes) frame by
+    frame into lamps that keep their identity, keyframed on every frame of the scene's range. Esc stops"""
+
+    bl_idname = "probe_lights.bake_animation"
+    bl_label = "Bake animation"
+    bl_options = {"REGISTER", "UNDO"}
+    __annotations__ = {
+        **bake_settings(),
+        "smoothness": bpy.props.FloatProperty(
+            name="Smoothness", default=0.1, min=0.0, max=100.0,
+            description="How much more error a frame may keep to keep its lamps still: 0 cuts every frame anew, "
+                        "more keeps the last frame's cuts longer"),
+        "frame_start": bpy.props.IntProperty(name="Start", default=0, description="First frame (0: the scene's)"),
+        "frame_end": bpy.props.IntProperty(name="End", default=0, description="Last frame (0: the scene's)"),
+    }
+
+    def _begin(self, context):
+        self._bake = AnimationBake(context, self, self.smoothness, self.frame_start, self.frame_end)
+
+    def execute(self, context):
+        try:
+            self._begin(context)
+            try:
+                while not self._bake.step():
+                    pass
+            except ProbeError:
+                self._bake.close()
+                raise
+            return self._finish(context)
+        except ProbeError as e:
+            self.report({"ERROR"}, str(e))
+            return {"CANCELLED"}
+
+    def invoke(self, context, event):
+        settings = context.scene.probe_lights
+        for name in SETTING_NAMES:
+            if not self.properties.is_property_set(name):
+                setattr(self, name, getattr(settings, name))
+        if context.window is None:
+            return self.execute(context)
+        try:
+            self._begin(context)
+        except ProbeError as e:
+            self.report({"ERROR"}, str(e))
+            return {"CANCELLED"}
+        wm = context.window_manager
+        self._timer = wm.event_timer_add(0.01, window=context.window)
+        wm.progress_begin(0, self._bake.total)
+        wm.modal_handler_add(self)
+        self._status(context)
+        return {"RUNNING_MODAL"}
+
+    def _status(self, context, text=None):
+        if context.workspace is not None:
+            done = len(self._bake.frames)
+            context.workspace.status_text_set(text if text is not None else "Baking animation: %d of %d frames "
+                                              "(Esc stops, nothing changes)" % (done, self._bake.total))
+
+    def _end(self, context):
+        wm = context.window_manager
+        wm.event_timer_remove(self._timer)
+        wm.progress_end()
+        if context.workspace is not None:
+            context.workspace.status_text_set(None)
+
+    def modal(self, context, event):
+        if event.type == "ESC":
+            self._end(context)
+            self._bake.close()
+            self.report({"WARNING"}, "Bake animation stopped after %d of %d frames: nothing changed" % (
+                len(self._bake.frames), self._bake.total))
+            return {"CANCELLED"}
+        if event.type != "TIMER":
+            return {"PASS_THROUGH"}
+        try:
+            done = self._bake.step()
+        except ProbeError as e:
+            self._end(context)
+            self._bake.close()
+            self.report({"ERROR"}, str(e))
+            return {"CANCELLED"}
+        context.window_manager.progress_update(len(self._bake.frames))
+        self._status(context)
+        if not done:
+            return {"RUNNING_MODAL"}
+        self._end(context)
+        try:
+            return self._finish(context)
+        except ProbeError as e:
+            self.report({"ERROR"}, str(e))
+            return {"CANCELLED"}
+
+    def _finish(self, context):
+        summary = self._bake.finish(context)
+        settings = context.scene.probe_lights
+        for name in SETTING_NAMES:
+            setattr(settings, name, getattr(self, name))
+        settings.last_count = summary["count"]
+        settings.last_source = summary["source"]
+        settings.last_notes = "\n".join(summary["notes"])
+        settings.last_warnings = "\n".join(summary["warnings"])
+        settings.last_diffuse_error = settings.last_shadow_error = -1.0
+        line = report_line(summary)
+        for w in summary["warnings"]:
+            self.report({"WARNING"}, w)
+        self.report({"WARNING"} if summary["warnings"] else {"INFO"}, line)
+        settings.last_report = line
+        return {"FINISHED"}
+
+
+classes = (PROBE_LIGHTS_OT_bake_animation,)

@@ -1,0 +1,170 @@
+"""Bake animation: a world that changes over time baked frame by frame into lamps that keep their identity, keyed
+on every frame; each frame's lamps the core's sequence bake of that frame's probe, energy exact."""
+
+import math
+import os
+import tempfile
+
+import bpy
+import numpy as np
+
+import harness
+from rgbe import write_hdr
+from addon_common import _probelights, bake, irradiance, latlong_direction, light_objects, LUM, sun_direction
+
+FRAMES = 12
+W, H = 64, 32
+
+
+def _spot(f):
+    """Frame f's spot pixel: it crosses the sky, rising, with its brightness changing."""
+    return 4 + 4 * f, 14 - f // 2
+
+
+def _write_sequence(folder):
+    """FRAMES Radiance frames sky_0001.hdr... of a dim sky with a bright spot moving across it."""
+    for f in range(1, FRAMES + 1):
+        a = np.full((H, W, 3), 0.05, np.float32)
+        a[H // 2:] = 0.02 * f  # the ground brightens
+        x, y = _spot(f)
+        a[y, x] = (300 + 40 * f, 250, 200)
+        write_hdr(os.path.join(folder, "sky_%04d.hdr" % f), a)
+
+
+def _sequence_world(folder, strength=2.0, start=1, offset=0, cyclic=False):
+    image = bpy.data.images.load(os.path.join(folder, "sky_0001.hdr"))
+    image.source = "SEQUENCE"
+    world = harness.env_world(image, strength=strength)
+    node = next(n for n in world.node_tree.nodes if n.bl_idname == "ShaderNodeTexEnvironment")
+    node.image_user.frame_duration, node.image_user.frame_start = FRAMES, start
+    node.image_user.frame_offset, node.image_user.use_cyclic = offset, cyclic
+    return world, node
+
+
+def _bake_animation(**settings):
+    result = bpy.ops.probe_lights.bake_animation("EXEC_DEFAULT", **settings)
+    assert result == {"FINISHED"}, result
+    return sorted(light_objects.baked_lights(bpy.context.scene.world), key=lambda o: o.name)
+
+
+def _expect_refusal(text, **settings):
+    try:
+        bpy.ops.probe_lights.bake_animation("EXEC_DEFAULT", **settings)
+    except RuntimeError as e:
+        message = str(e).strip()
+        assert text in message and "\n" not in message, message
+        print("  report: " + message)
+        return
+    raise AssertionError("Bake animation did not refuse")
+
+
+def test_an_image_sequence_bakes_into_keyed_lamps_that_keep_their_ids():
+    harness.empty_scene()
+    scene = bpy.context.scene
+    with tempfile.TemporaryDirectory() as folder:
+        _write_sequence(folder)
+        world, node = _sequence_world(folder)
+        scene.frame_start, scene.frame_end = 1, FRAMES
+        lamps = _bake_animation(count=6, shadows="SPREAD")
+        # The core's sequence bake of the same frames, read as Blender reads them.
+        animation = harness.addon_module("animation")
+        baker = _probelights.SequenceBaker(lights=6, sun_angles="spread")
+        frames = [baker.add(animation.sequence_pixels(node, f), frame=f) for f in range(1, FRAMES + 1)]
+    assert len(lamps) == 6
+    for lamp in lamps:  # every lamp keyed on every frame
+        fcurves = harness.addon_module("animation")._fcurves(lamp.animation_data)
+        assert {len(c.keyframe_points) for c in fcurves} == {FRAMES}, lamp.name
+    spot_lamp = set()
+    for f in (1, 2, 7, FRAMES):
+        scene.frame_set(f)
+        lights = frames[f - 1]["lights"]
+        for k, lamp in enumerate(lamps):
+            if lights["rgb"][k] @ LUM > 0:
+                assert harness.angle_deg(sun_direction(lamp), lights["direction"][k]) < 0.01, (f, k)
+            assert np.allclose(irradiance(lamp), 2.0 * lights["rgb"][k], rtol=1e-4, atol=1e-6), (f, k)
+            assert abs(lamp.data.angle - lights["angle"][k]) < 1e-5
+        total = sum(irradiance(lamp) for lamp in lamps)
+        assert np.allclose(total, 2.0 * frames[f - 1]["total_rgb"], rtol=1e-4), (f, total)  # energy exact
+        x, y = _spot(f)
+        near = [k for k, lamp in enumerate(lamps) if harness.angle_deg(sun_direction(lamp),
+                                                                       latlong_direction(x, y, W, H)) < 6]
+        spot_lamp.add(max(near, key=lambda k: irradiance(lamps[k]) @ LUM))
+    assert len(spot_lamp) == 1, spot_lamp  # one lamp carries the moving spot all along
+    # The world's strength is still followed, on every frame.
+    node.id_data.nodes["Background"].inputs["Strength"].default_value = 3.0
+    scene.frame_set(7)
+    assert np.allclose(irradiance(lamps[0]), 3.0 * frames[6]["lights"]["rgb"][0], rtol=1e-4, atol=1e-6)
+    print("  %d lamps keyed on %d frames; the spot kept lamp %d" % (len(lamps), FRAMES, spot_lamp.pop()))
+
+
+def test_a_bake_of_an_image_sequence_reads_the_scenes_frame_and_restore_takes_the_keys():
+    harness.empty_scene()
+    scene = bpy.context.scene
+    with tempfile.TemporaryDirectory() as folder:
+        _write_sequence(folder)
+        _, node = _sequence_world(folder)
+        scene.frame_set(7)
+        lamp = max(bake(count=4), key=lambda o: irradiance(o) @ LUM)
+        assert harness.angle_deg(sun_direction(lamp), latlong_direction(*_spot(7), W, H)) < 3
+        assert lamp.animation_data is None or lamp.animation_data.action is None
+        lamps = _bake_animation(count=4, frame_start=2, frame_end=5)
+        actions = {a.name for a in bpy.data.actions}
+        assert actions and all(o.animation_data.action is not None for o in lamps)
+        # A single bake after it keys nothing: the lamps it reuses lose their keys.
+        lamps = bake(count=4)
+        assert all(o.animation_data is None or o.animation_data.action is None for o in lamps)
+        assert not bpy.data.actions, [a.name for a in bpy.data.actions]
+        lamps = _bake_animation(count=4, frame_start=2, frame_end=5)
+        assert bpy.ops.probe_lights.restore("EXEC_DEFAULT") == {"FINISHED"}
+        assert not light_objects.baked_lights(scene.world) and not bpy.data.actions
+        # A frame whose file is not there, a range backwards, a world that does not change: one line each.
+        node.image_user.frame_duration = FRAMES + 5  # images past the last file
+        _expect_refusal("has no file", frame_start=10, frame_end=FRAMES + 3)
+        _expect_refusal("ends before it starts", frame_start=5, frame_end=4)
+    harness.empty_scene()
+    harness.env_world(harness.float_image("still", np.ones((8, 16, 3))))
+    _expect_refusal("does not change over time")
+
+
+def test_sequence_frames_are_the_ones_cycles_renders():
+    """The image of each scene frame (start frame, offset, cyclic) is the one Cycles renders at that frame."""
+    harness.empty_scene()
+    animation = harness.addon_module("animation")
+    with tempfile.TemporaryDirectory() as folder:
+        _write_sequence(folder)
+        for start, offset, cyclic, frames in ((3, 1, True, (2, 15, 30)), (1, 0, False, (2, 30))):
+            world, node = _sequence_world(folder, start=start, offset=offset, cyclic=cyclic)
+            node.image_user.frame_duration = FRAMES - 2
+            render = harness.addon_module("world_image").WorldRender(world, W, samples=4)
+            try:
+                for frame in frames:
+                    read = animation.sequence_pixels(node, frame)
+                    rendered = render.render(frame)
+                    at = [np.unravel_index(np.argmax(p[..., 1]), p.shape[:2]) for p in (read, rendered)]
+                    assert at[0] == at[1], (start, offset, cyclic, frame, at)
+            finally:
+                render.close()
+
+
+def test_an_animated_sky_is_rendered_frame_by_frame():
+    harness.empty_scene()
+    scene = bpy.context.scene
+    world = harness.sky_world(elevation_deg=10.0)
+    sky = next(n for n in world.node_tree.nodes if n.bl_idname == "ShaderNodeTexSky")
+    for frame, elevation in ((1, 10.0), (3, 50.0)):
+        sky.sun_elevation = math.radians(elevation)
+        sky.keyframe_insert("sun_elevation", frame=frame)
+    scene.frame_start, scene.frame_end = 1, 3
+    animation = harness.addon_module("animation")
+    animation.RENDER_WIDTH, width = 128, animation.RENDER_WIDTH
+    try:
+        lamps = _bake_animation(count=8)
+    finally:
+        animation.RENDER_WIDTH = width
+    elevations = []
+    for f in (1, 2, 3):
+        scene.frame_set(f)
+        sun = max(lamps, key=lambda o: irradiance(o) @ LUM)
+        elevations.append(math.degrees(math.asin(sun_direction(sun)[2])))
+    assert abs(elevations[0] - 10) < 4 and abs(elevations[2] - 50) < 4 and elevations[0] < elevations[1] < elevations[2], elevations
+    print("  the sky's sun at %s degrees" % ", ".join("%.1f" % e for e in elevations))
