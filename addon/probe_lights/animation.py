@@ -17,7 +17,7 @@ import time
 
 import bpy
 import numpy as np
-from mathutils import Matrix
+from mathutils import Matrix, Vector
 
 from . import light_kinds, native
 from .blender_caps import sun_cones
@@ -153,9 +153,10 @@ def frame_range(scene, start, end):
 
 
 def keyframe_lamps(scene, lamps, frames, kind, distance):
-    """Keys lamp k with light k of every frame: location and rotation (a quaternion kept on one side, so the
-    interpolation turns the short way), colour, strength (before the world's strength: ENERGY_KEY when the energy
-    follows the Strength by a driver) and a sun's angle. A dark light keeps its direction and colour."""
+    """Keys lamp k with light k of every frame: location and rotation (each key the last one turned by the
+    shortest arc to the new direction, so between frames a sun sweeps the great circle), colour, strength (before
+    the world's strength: ENERGY_KEY when the energy follows the Strength by a driver) and a sun's angle. A dark
+    light keeps its direction and colour."""
     version = bpy.app.version
     for k, obj in enumerate(lamps):
         obj.rotation_mode = "QUATERNION"
@@ -165,16 +166,18 @@ def keyframe_lamps(scene, lamps, frames, kind, distance):
         energy_path = '["%s"]' % ENERGY_KEY if driven else "energy"
         if driven:
             drive_energy_by_key(data, ENERGY_KEY)
-        last_q = last_colour = None
+        last_q = last_d = last_colour = None
         for f, frame in frames:
             direction = frame["lights"]["direction"][k]
             rgb = frame["lights"]["rgb"][k]
             if kind.soft:
                 p = sun_parameters(direction, rgb, frame["lights"]["angle"][k], version)
-                q = Matrix(p["rotation"].tolist()).to_quaternion()
-                if last_q is not None and q.dot(last_q) < 0:
-                    q.negate()
-                obj.location, obj.rotation_quaternion, last_q = tuple(radius * np.asarray(direction)), q, q
+                d = Vector(tuple(direction)).normalized()
+                if last_q is None:
+                    q = Matrix(p["rotation"].tolist()).to_quaternion()
+                else:  # the last key turned by the shortest arc: between keys the sun sweeps the great circle
+                    q = last_d.rotation_difference(d) @ last_q
+                obj.location, obj.rotation_quaternion, last_q, last_d = tuple(radius * d), q, q, d
                 data.angle = p["angle"]
                 data.keyframe_insert("angle", frame=f)
                 obj.keyframe_insert("rotation_quaternion", frame=f)

@@ -17,15 +17,18 @@ namespace probelights::cli {
 std::string sequenceOptionsUsage() {
   return tableUsage(sequenceOptions(), SequenceRequest{}) +
          usageLines("  --usd FILE", "one USD layer of the lights animated frame by frame (time samples)") +
-         usageLines("  --light-type sun|point", "the USD layer's lights (default sun)") +
+         usageLines("  --gltf FILE",
+                    "one glTF of the lights animated frame by frame (nodes; colour and intensity by "
+                    "KHR_animation_pointer)") +
+         usageLines("  --light-type sun|point", "the animated files' lights (default sun)") +
          usageLines("  --distance M", "point lights' metres from the origin (default 10)") +
-         usageLines("  --fps F", "the USD layer's frames per second (default 24)") +
+         usageLines("  --fps F", "the animated files' frames per second (default 24)") +
          usageLines("  -q, --quiet", "no line per frame, only the summary");
 }
 
 int sequenceCommand(const std::vector<std::string>& argv) {
-  std::string output, usd;
-  bool quiet = false;
+  std::string output, usd, gltf;
+  bool quiet = false, exportOptionGiven = false;
   ExportOptions exportOptions;
   double fps = 24;
   SequenceRequest request;
@@ -38,12 +41,17 @@ int sequenceCommand(const std::vector<std::string>& argv) {
   table.push_back({{"-o", "--output"}, [&](const std::string& v) { output = nonEmpty("-o", v); }});
   table.push_back(flag({"-q", "--quiet"}, [&] { quiet = true; }));
   table.push_back({{"--usd"}, [&](const std::string& v) { usd = nonEmpty("--usd", v); }});
-  table.push_back({{"--light-type"},
-                   [&](const std::string& v) { exportOptions.kind = parseExportKind("--light-type", v); }});
+  table.push_back({{"--gltf"}, [&](const std::string& v) { gltf = nonEmpty("--gltf", v); }});
+  table.push_back({{"--light-type"}, [&](const std::string& v) {
+                     exportOptions.kind = parseExportKind("--light-type", v);
+                     exportOptionGiven = true;
+                   }});
   table.push_back({{"--distance"}, [&](const std::string& v) {
                      exportOptions.distance = checkedDistance("--distance", parseReal("--distance", v));
+                     exportOptionGiven = true;
                    }});
   table.push_back({{"--fps"}, [&](const std::string& v) {
+                     exportOptionGiven = true;
                      fps = parseReal("--fps", v);
                      if (!(fps > 0 && fps <= 1000))
                        throw UsageError("--fps takes frames per second in (0, 1000], got '" + v + "'");
@@ -53,11 +61,13 @@ int sequenceCommand(const std::vector<std::string>& argv) {
     throw UsageError("bake-sequence takes one pattern of frames (sky_####.exr, quoted), got " +
                      std::to_string(positional.size()) + " arguments");
   const std::string pattern = positional[0];
+  if (exportOptionGiven && usd.empty() && gltf.empty())
+    throw UsageError("--light-type, --distance and --fps shape the animated files: give --usd or --gltf");
   given.apply(request);
   SequenceBaker baker = makeSequenceBaker(request);  // a bad request is refused before any file is read
   const std::vector<SequenceFile> files = sequenceFiles(pattern, request.frames);
-  for (const SequenceFile& f : files) refuseOverwritingProbe(f.path, {output, usd});
-  std::vector<std::pair<int, std::vector<Light>>> animation;  // for --usd
+  for (const SequenceFile& f : files) refuseOverwritingProbe(f.path, {output, usd, gltf});
+  std::vector<std::pair<int, std::vector<Light>>> animation;  // for --usd and --gltf
 
   const bool evaluate = request.judging.accuracy.evaluate;
   std::FILE* report = output == "-" ? messages() : stdout;  // JSON on standard output: the lines beside it
@@ -75,7 +85,7 @@ int sequenceCommand(const std::vector<std::string>& argv) {
     const SequenceFrame frame = baker.add(probe);
     std::optional<FrameResponse> judged;
     if (evaluate) judged = judgeFrame(probe, frame.lights, request.judging.accuracy.evaluatorWidth);
-    if (!usd.empty()) animation.emplace_back(file.frame, frame.lights);
+    if (!usd.empty() || !gltf.empty()) animation.emplace_back(file.frame, frame.lights);
     const double ms = frame.timings.tablesMs + frame.timings.partitionMs + frame.timings.lightsMs;
     bakeMs += ms, loadMs += frameLoadMs, recuts += frame.recut, motion += frame.motion;
     frames.push_back(
@@ -117,9 +127,9 @@ int sequenceCommand(const std::vector<std::string>& argv) {
       std::fprintf(report, ", flicker %.2f x the world's own change", lampChange / truthChange);
   }
   std::fprintf(report, "; %.1f ms a frame (+ %.1f ms to read it)\n", bakeMs / n, loadMs / n);
-  if (!usd.empty())
-    writeWhole(usd, usdAnimation(animation, exportOptions,
-                                 "probelights " PROBELIGHTS_VERSION " bake-sequence", fps));
+  const std::string generator = "probelights " PROBELIGHTS_VERSION " bake-sequence";
+  if (!usd.empty()) writeWhole(usd, usdAnimation(animation, exportOptions, generator, fps));
+  if (!gltf.empty()) writeWhole(gltf, gltfAnimation(animation, exportOptions, generator, fps));
   if (!output.empty()) {
     nlohmann::json root{{"generator", "probelights " PROBELIGHTS_VERSION},
                         {"pattern", pattern},

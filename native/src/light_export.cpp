@@ -2,103 +2,16 @@
 
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <cmath>
 
+#include "export_text.h"
 #include "probelights/error.h"
 #include "probelights/geometry.h"
 #include "probelights/names.h"
 
 namespace probelights {
 
-namespace {
-
-// Shortest text that reads back as the same double (std::to_chars), as JSON takes it.
-std::string number(double v) {
-  if (!std::isfinite(v)) v = 0;
-  if (v == 0) return "0";
-  std::array<char, 32> text{};
-  const auto end = std::to_chars(text.data(), text.data() + text.size(), v).ptr;
-  return std::string(text.data(), end);
-}
-
-// "[a, b, c]" (JSON's arrays), or with other brackets "(a, b, c)" (usda's tuples).
-std::string numbers(std::initializer_list<double> vs, char open = '[', char close = ']') {
-  std::string out(1, open);
-  for (double v : vs) out += (out.size() > 1 ? ", " : "") + number(v);
-  return out + close;
-}
-
-// Text inside a usda string: quotes and backslashes escaped, line breaks as spaces.
-std::string usdString(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += (c == '\n' || c == '\r') ? ' ' : c;
-  }
-  return out;
-}
-
-// A usda asset path: @path@, or @@@path@@@ for one holding an @ (usda's two forms).
-std::string assetPath(const std::string& path) {
-  if (path.find("@@@") != std::string::npos || path.find_first_of("\n\r") != std::string::npos)
-    throw Error("cannot name '" + path + "' in a USD file (it holds @@@ or a line break)");
-  return path.find('@') == std::string::npos ? "@" + path + "@" : "@@@" + path + "@@@";
-}
-
-// Blender's frame (Z up) to glTF's (Y up).
-Vec3 toGltf(const Vec3& v) { return {v.x, v.z, -v.y}; }
-
-// The unit quaternion (x, y, z, w) of the shortest turn taking +Z to the unit vector d: half-way between them
-// (q = (z x d, 1 + z.d), normalized); d = -Z turns half a circle about X.
-std::array<double, 4> turnZTo(const Vec3& d) {
-  const double w = 1 + d.z;
-  if (w < 1e-12) return {1, 0, 0, 0};
-  const double x = -d.y, y = d.x;  // (0, 0, 1) x d
-  const double n = std::sqrt(x * x + y * y + w * w);
-  return {x / n, y / n, 0, w / n};
-}
-
-// A light as both formats write it: its rgb with channels below zero (or not finite) as 0, the sum of what
-// was dropped added to `clamped` (when given), its largest channel and its unit direction (Blender's frame).
-struct Written {
-  Rgb rgb;
-  double peak;
-  Vec3 direction;
-  std::string name;
-};
-
-std::vector<Written> written(const std::vector<Light>& lights, ExportKind kind, Rgb* clamped) {
-  if (clamped) *clamped = {0, 0, 0};
-  std::vector<Written> out;
-  for (std::size_t i = 0; i < lights.size(); ++i) {
-    const Light& l = lights[i];
-    Written w{l.rgb, 0, {0, 0, 1}, ""};
-    for (int c = 0; c < 3; ++c) {
-      if (w.rgb[c] < 0 || !std::isfinite(w.rgb[c])) {
-        if (clamped && std::isfinite(w.rgb[c])) (*clamped)[c] += w.rgb[c];
-        w.rgb[c] = 0;
-      }
-    }
-    w.peak = std::max({w.rgb[0], w.rgb[1], w.rgb[2]});
-    const Vec3& d = l.direction;
-    const double n = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
-    if (n > 0 && std::isfinite(n)) w.direction = {d.x / n, d.y / n, d.z / n};
-    const std::string index = std::to_string(i);
-    w.name = (kind == ExportKind::Sun ? "sun_" : "point_") +
-             std::string(index.size() < 3 ? 3 - index.size() : 0, '0') + index;
-    out.push_back(std::move(w));
-  }
-  return out;
-}
-
-// The light's colour: its rgb over its largest channel (white when it has none).
-std::array<double, 3> colourOf(const Written& w) {
-  if (!(w.peak > 0)) return {1, 1, 1};
-  return {w.rgb[0] / w.peak, w.rgb[1] / w.peak, w.rgb[2] / w.peak};
-}
-
-}  // namespace
+using namespace exporttext;
 
 const std::vector<LightKind>& lightKinds() {
   static const std::vector<LightKind> kLightKinds{
@@ -211,72 +124,6 @@ std::string usdDocument(const std::vector<Light>& lights, const ExportOptions& o
            "        token inputs:texture:format = \"latlong\"\n"
            "        quatf xformOp:orient = (0.5, 0.5, 0.5, 0.5)\n"
            "        uniform token[] xformOpOrder = [\"xformOp:orient\"]\n    }\n";
-  }
-  return out + "}\n";
-}
-
-std::string usdAnimation(const std::vector<std::pair<int, std::vector<Light>>>& frames,
-                         const ExportOptions& options, const std::string& generator, double framesPerSecond) {
-  if (frames.empty()) throw Error("an animated USD layer needs at least one frame");
-  const std::size_t n = frames.front().second.size();
-  for (const auto& [frame, lights] : frames)
-    if (lights.size() != n) throw Error("every frame of an animated USD layer has the same lights");
-  if (!(framesPerSecond > 0 && std::isfinite(framesPerSecond)))
-    throw Error("frames per second must be above 0");
-  const bool sun = options.kind == ExportKind::Sun;
-  const double d = options.distance;
-  constexpr double kSunDiameter = 0.53 * kPi / 180;  // as usdDocument draws a point light's radius
-  std::vector<std::vector<Written>> all;
-  for (const auto& [frame, lights] : frames) all.push_back(written(lights, options.kind, nullptr));
-  auto tuple = [](std::initializer_list<double> vs) { return numbers(vs, '(', ')'); };
-  // One attribute's time samples, { frame: value, ... }, a value a frame from `value(frame index, light)`.
-  auto samples = [&](const std::string& declaration, std::size_t i, auto&& value) {
-    std::string out = "        " + declaration + ".timeSamples = {\n";
-    for (std::size_t f = 0; f < frames.size(); ++f)
-      out += "            " + std::to_string(frames[f].first) + ": " + value(f, i) + ",\n";
-    return out + "        }\n";
-  };
-  auto angleOf = [&](std::size_t f, std::size_t i) {
-    const double a = frames[f].second[i].angle;
-    return std::isfinite(a) && a > 0 ? std::min(a, kPi) : 0.0;
-  };
-  std::string out = "#usda 1.0\n(\n    defaultPrim = \"probelights\"\n    doc = \"" + usdString(generator) +
-                    "\"\n    endTimeCode = " + std::to_string(frames.back().first) +
-                    "\n    metersPerUnit = 1\n    startTimeCode = " + std::to_string(frames.front().first) +
-                    "\n    timeCodesPerSecond = " + number(framesPerSecond) +
-                    "\n    upAxis = \"Z\"\n)\n\ndef Xform \"probelights\"\n{\n";
-  for (std::size_t i = 0; i < n; ++i) {
-    out += std::string(i ? "\n" : "") + "    def " + (sun ? "DistantLight" : "SphereLight") + " \"" +
-           all[0][i].name + "\"\n    {\n";
-    if (sun)
-      out += samples("float inputs:angle", i,
-                     [&](std::size_t f, std::size_t k) { return number(angleOf(f, k) * 180 / kPi); });
-    out += samples("color3f inputs:color", i, [&](std::size_t f, std::size_t k) {
-      const auto c = colourOf(all[f][k]);
-      return tuple({c[0], c[1], c[2]});
-    });
-    out += samples("float inputs:intensity", i, [&](std::size_t f, std::size_t k) {
-      return number(sun ? all[f][k].peak : 4 * all[f][k].peak * d * d);
-    });
-    out += "        bool inputs:normalize = 1\n";
-    if (!sun)
-      out += samples("float inputs:radius", i, [&](std::size_t f, std::size_t k) {
-        return number(d * std::sin(std::max(angleOf(f, k), kSunDiameter) / 2));
-      });
-    if (sun) {
-      out += samples("quatf xformOp:orient", i, [&](std::size_t f, std::size_t k) {
-        const auto q = turnZTo(all[f][k].direction);  // (x, y, z, w); USD writes (w, x, y, z)
-        return tuple({q[3], q[0], q[1], q[2]});
-      });
-      out += "        uniform token[] xformOpOrder = [\"xformOp:orient\"]\n";
-    } else {
-      out += samples("double3 xformOp:translate", i, [&](std::size_t f, std::size_t k) {
-        const Vec3& w = all[f][k].direction;
-        return tuple({w.x * d, w.y * d, w.z * d});
-      });
-      out += "        uniform token[] xformOpOrder = [\"xformOp:translate\"]\n";
-    }
-    out += "    }\n";
   }
   return out + "}\n";
 }

@@ -233,5 +233,17 @@ expect_error "sequence fitted angles" "spread or points" bake-sequence "$tmp/seq
 expect_error "sequence frames backwards" "the first frame before the last" bake-sequence "$tmp/seq/seq_####.pfm" --frames 4-2
 expect_error "sequence fps" "--fps takes frames per second" bake-sequence "$tmp/seq/seq_####.pfm" --usd "$tmp/s.usda" --fps 0
 expect_error "sequence overwriting a frame" "" bake-sequence "$tmp/seq/seq_####.pfm" -o "$tmp/seq/seq_0002.pfm"
+expect_error "sequence export options without a file" "give --usd or --gltf" bake-sequence "$tmp/seq/seq_####.pfm" --fps 30
+check "bake-sequence --gltf keys every light on every frame" "'$bin' bake-sequence '$tmp/seq/seq_####.pfm' --lights 3 -q --gltf '$tmp/seq.gltf' --fps 30 && python3 - '$tmp/seq.gltf' <<'PY'
+import base64, json, struct, sys
+d = json.load(open(sys.argv[1]))
+a = d['animations'][0]
+assert len(a['channels']) == 9 and 'KHR_animation_pointer' in d['extensionsUsed'], a['channels']
+data = base64.b64decode(d['buffers'][0]['uri'].split(',', 1)[1])
+assert len(data) == d['buffers'][0]['byteLength']
+view = d['bufferViews'][d['accessors'][a['samplers'][0]['input']]['bufferView']]
+times = struct.unpack('<4f', data[view['byteOffset']:view['byteOffset'] + 16])
+assert [round(t * 30) for t in times] == [1, 2, 3, 4], times
+PY"
 echo "$passed passed, $failed failed"
 [[ $failed -eq 0 ]]

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <nlohmann/json.hpp>
 
 #include "probelights/error.h"
@@ -148,6 +149,74 @@ TEST(LightExport, LightKindsAreNamedOnceAndRefusedByTheirWords) {
         }
       },
       Error);
+}
+
+// The floats of a glTF accessor, decoded from the document's base64 data URI.
+std::vector<float> accessorFloats(const nlohmann::json& doc, int accessor) {
+  const std::string uri = doc["buffers"][0]["uri"];
+  const std::string digits = uri.substr(uri.find(',') + 1);
+  const std::string alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::vector<unsigned char> bytes;
+  unsigned bits = 0;
+  int held = 0;
+  for (char c : digits) {
+    if (c == '=') break;
+    bits = bits << 6 | static_cast<unsigned>(alphabet.find(c));
+    held += 6;
+    if (held >= 8) bytes.push_back(static_cast<unsigned char>(bits >> (held -= 8) & 255));
+  }
+  EXPECT_EQ(bytes.size(), doc["buffers"][0]["byteLength"].get<std::size_t>());
+  const auto& view = doc["bufferViews"][doc["accessors"][accessor]["bufferView"].get<int>()];
+  std::vector<float> out(view["byteLength"].get<std::size_t>() / 4);
+  std::memcpy(out.data(), bytes.data() + view["byteOffset"].get<std::size_t>(), out.size() * 4);
+  return out;
+}
+
+TEST(LightExport, AnimatedGltfKeysEveryLightOnEveryFrame) {
+  // Light 0 turns about Z from +X through +Y to -X; light 1 brightens. Frames 10 to 12 at 25 fps.
+  std::vector<std::pair<int, std::vector<Light>>> frames;
+  for (int f = 0; f < 3; ++f) {
+    const double a = kPi / 2 * f;
+    frames.push_back({10 + f, {light({std::cos(a), std::sin(a), 0}, {1, 1, 1}), light({0, 0, 1}, {1.0 + f, 2, 2})}});
+  }
+  const auto doc = nlohmann::json::parse(gltfAnimation(frames, {}, "t", 25));
+  EXPECT_EQ(doc["extensionsUsed"], nlohmann::json({"KHR_lights_punctual", "KHR_animation_pointer"}));
+  const auto& animation = doc["animations"][0];
+  ASSERT_EQ(animation["channels"].size(), 6u);  // rotation, colour, intensity a light
+  EXPECT_EQ(animation["channels"][4]["target"]["extensions"]["KHR_animation_pointer"]["pointer"],
+            "/extensions/KHR_lights_punctual/lights/1/color");
+  const int input = animation["samplers"][0]["input"];
+  const std::vector<float> times = accessorFloats(doc, input);
+  ASSERT_EQ(times.size(), 3u);
+  EXPECT_FLOAT_EQ(times[0], 10.0f / 25);
+  EXPECT_FLOAT_EQ(times[2], 12.0f / 25);
+  EXPECT_EQ(doc["accessors"][input]["max"][0].get<float>(), times[2]);
+  // Each key of light 0 its frame's turn, kept on one side of the last.
+  const std::vector<float> q = accessorFloats(doc, animation["samplers"][0]["output"]);
+  ASSERT_EQ(q.size(), 12u);
+  for (int f = 1; f < 3; ++f) {
+    double dot = 0;
+    for (int c = 0; c < 4; ++c) dot += q[4 * f + c] * q[4 * (f - 1) + c];
+    EXPECT_GT(dot, 0) << f;
+  }
+  const auto still = nlohmann::json::parse(gltfDocument(frames[0].second, {}, "t"))["nodes"][0]["rotation"];
+  for (int c = 0; c < 4; ++c) EXPECT_NEAR(q[c], still[c].get<double>(), 1e-7);
+  // Half-way between keys (glTF's LINEAR: slerp), light 0 shines from half-way along the great circle: +X+Y.
+  std::array<double, 4> mid;
+  for (int c = 0; c < 4; ++c) mid[c] = q[c] + q[4 + c];  // the slerp at 1/2 of keys 90 degrees apart
+  const double norm = std::sqrt(mid[0] * mid[0] + mid[1] * mid[1] + mid[2] * mid[2] + mid[3] * mid[3]);
+  for (double& c : mid) c /= norm;
+  const double x = mid[0], y = mid[1], z = mid[2], w = mid[3];  // the turned +Z, in glTF's frame
+  const Vec3 shines{2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)};
+  EXPECT_NEAR(shines.x, std::sqrt(0.5), 1e-6);   // Blender's +X+Y is glTF's (x, 0, -y)
+  EXPECT_NEAR(shines.z, -std::sqrt(0.5), 1e-6);
+  EXPECT_NEAR(shines.y, 0, 1e-6);
+  // Light 1's intensity, lux a frame.
+  const std::vector<float> lux = accessorFloats(doc, animation["samplers"][5]["output"]);
+  EXPECT_FLOAT_EQ(lux[0], static_cast<float>(2 * kLumensPerWatt));
+  EXPECT_FLOAT_EQ(lux[2], static_cast<float>(3 * kLumensPerWatt));
+  EXPECT_THROW(gltfAnimation({{1, {light({0, 0, 1}, {1, 1, 1})}}, {2, {}}}, {}, "t"), Error);
+  EXPECT_THROW(gltfAnimation({}, {}, "t"), Error);
 }
 
 }  // namespace

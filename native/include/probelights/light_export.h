@@ -83,6 +83,17 @@ std::string usdAnimation(const std::vector<std::pair<int, std::vector<Light>>>& 
                          const ExportOptions& options, const std::string& generator,
                          double framesPerSecond = 24);
 
+// The same frames as one self-contained glTF 2.0 document (its buffer a base64 data URI): gltfDocument's
+// lights and nodes of the first frame and one animation, a key a frame at time frame / framesPerSecond
+// (seconds), straight between keys: each node's rotation (a sun) or translation (a point), and through
+// KHR_animation_pointer each light's colour and intensity (glTF has no other way to animate a light). A sun's
+// key is the last key turned by the shortest arc to its new direction, so between keys it sweeps the great
+// circle (usdAnimation's orients too). Every frame must hold as many lights as the first (an Error
+// otherwise).
+std::string gltfAnimation(const std::vector<std::pair<int, std::vector<Light>>>& frames,
+                          const ExportOptions& options, const std::string& generator,
+                          double framesPerSecond = 24);
+
 // A format the lights are written in, registered once in kExporters (light_export.cpp): the CLI's --NAME FILE
 // (and --NAME-dome when it takes a dome), the module's export(lights, "NAME", ...) and exporters. Adding one:
 // its writer and its row there, its tests (LightExport.EveryRegisteredFormat... already holds it to the
