@@ -1,6 +1,7 @@
 """Bake animation in Blender: the time of the add-on's whole click for an image sequence of 48 1K frames (the
 bundled probe with a sun crossing it, bench_sequence.py's "day", written as Radiance frames), at 16 and 64 lights,
-with its stages (reading the frames through Blender, the core's sequence bake, making and keying the lamps); and
+with Refit (each frame finished as a single bake: fitted angles, colours and directions refit) and without, with
+its stages (reading the frames through Blender, the core's sequence bake, making and keying the lamps); and
 the cost a frame of an animated Sky Texture, which is rendered (Cycles, a panorama of animation.RENDER_WIDTH):
 
   tests/blender/run.sh ~/.cache/probelights/bpy-4.5.15/bin/python bench/bench_addon_animation.py \\
@@ -49,9 +50,11 @@ with tempfile.TemporaryDirectory() as tmp:
     scene = bpy.context.scene
     scene.frame_start, scene.frame_end = 1, FRAMES
     for lights in (16, 64):
-        runs = [timed_click(count=lights) for _ in range(3)]
-        print("TIMING Blender %s, %d frames of %dx%d, %d lights: %s s; the add-on's report: %s" % (
-            bpy.app.version_string, FRAMES, 1024, 512, lights, " / ".join("%.2f" % r[0] for r in runs), runs[-1][1]))
+        for refit in (True, False):
+            runs = [timed_click(count=lights, refit=refit) for _ in range(3)]
+            print("TIMING Blender %s, %d frames of %dx%d, %d lights, Refit %s: %s s; the add-on's report: %s" % (
+                bpy.app.version_string, FRAMES, 1024, 512, lights, "on" if refit else "off",
+                " / ".join("%.2f" % r[0] for r in runs), runs[-1][1]))
 
 harness.empty_scene()
 world = harness.sky_world(elevation_deg=2.0)

@@ -11,7 +11,8 @@ of lit object pixels (render_scene.block_difference's rule, from the world-lit f
   change   the frame-to-frame change, sum |L(f+1) - L(f)|, over the world-lit renders' own;
   jitter   the second difference, sum |L(f+1) - 2 L(f) + L(f-1)|, over the world-lit renders' own: what is not
            smooth in time (a lamp that jumps), 1 when the lamps change as smoothly as the world.
-Cycles at 128 x 96, 128 samples, seed fixed (its noise correlated from frame to frame), 4 bounces.
+Cycles at 128 x 96, 128 samples, seed fixed (its noise correlated from frame to frame), 4 bounces. 16 lamps;
+PROBELIGHTS_BENCH_LIGHTS=64 for 64.
 """
 import os
 import pathlib
@@ -31,7 +32,7 @@ import render_scene  # noqa: E402
 from bench_sequence import make_day  # noqa: E402
 from rgbe import read_hdr, write_hdr  # noqa: E402
 
-FRAMES, LIGHTS = 24, 16
+FRAMES, LIGHTS = 24, int(os.environ.get("PROBELIGHTS_BENCH_LIGHTS", "16"))
 harness.install_addon(harness.args().zip)
 
 
@@ -67,9 +68,10 @@ with tempfile.TemporaryDirectory() as tmp:
     world_lit = render_frames()
     lit = render_scene.lit_blocks(world_lit[0])
     rows = []
-    for smoothness in (0.1, 0.0):
-        assert bpy.ops.probe_lights.bake_animation("EXEC_DEFAULT", count=LIGHTS, smoothness=smoothness) == {"FINISHED"}
-        rows.append(("Bake animation, smoothness %g" % smoothness, measure(world_lit, lit, render_frames())))
+    for refit in (True, False):
+        assert bpy.ops.probe_lights.bake_animation("EXEC_DEFAULT", count=LIGHTS, refit=refit) == {"FINISHED"}
+        rows.append(("Bake animation, Refit %s" % ("on (default)" if refit else "off"),
+                     measure(world_lit, lit, render_frames())))
     single = []
     for f in range(1, FRAMES + 1):
         scene.frame_set(f)

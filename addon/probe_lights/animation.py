@@ -20,12 +20,12 @@ import numpy as np
 from mathutils import Matrix, Vector
 
 from . import light_kinds, native
-from .blender_caps import sun_cones
+from .blender_caps import sun_cones, sun_profile
 from .conversion import point_parameters, sun_parameters
 from .errors import ProbeError
 from .lamp_keys import ENERGY_KEY, drive_energy_by_key
 from .light_objects import make_lights
-from .properties import cut_method
+from .properties import NATIVE_SUN_ANGLES, cut_method
 from .world_graph import ProbeSource, find_probe, sequence_number, sequence_path
 from .world_image import WorldRender, image_pixels
 
@@ -130,15 +130,18 @@ class FrameSource:
 
 
 def sequence_options(scene, settings, smoothness):
-    """The core's SequenceBaker options for the panel's settings (the sequence takes the cut methods and angles
-    that keep lights comparable from frame to frame: no refit, spread angles)."""
+    """The core's SequenceBaker options for the panel's settings: each frame finished as a single bake is (the
+    angles as Shadows says, the refit of colours and directions with Refit, judged at 512 wide), its cuts by
+    variance or median cut (Auto and Both cut by variance: a sequence keeps one cut)."""
     method = cut_method(settings.method)
     if method not in ("variance", "median-cut"):
         raise ProbeError("Bake animation cuts by variance or median cut: set Method to one of them")
     soft = light_kinds.kind(settings.light_type).soft
     return {"lights": settings.count, "method": method, "resolution": settings.resolution,
-            "sun_angles": "spread" if soft and settings.shadows != "HARD" else "points",
-            "sun_cones": sun_cones(scene.render.engine, bpy.app.version), "nonfinite": settings.non_finite,
+            "sun_angles": NATIVE_SUN_ANGLES[settings.shadows] if soft else "points",
+            "sun_cones": sun_cones(scene.render.engine, bpy.app.version),
+            "sun_profile": sun_profile(bpy.app.version), "refit": bool(settings.refit),
+            "move_directions": bool(settings.refit), "evaluator_width": 512, "nonfinite": settings.non_finite,
             "smoothness": smoothness}
 
 

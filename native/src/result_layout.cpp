@@ -99,6 +99,7 @@ void writeSequenceFrame(ResultWriter& w, const SequenceFrameReport& report) {
   w.number("motion", f.motion);
   w.number("spread", f.spread);
   w.number("fresh_spread", f.freshSpread);
+  w.number("energy_shift", f.energyShift);
   writeLights(w, "lights", f.lights, true);
   w.numbers("total_rgb", f.totalRgb);
   writeTimingsAndNotes(w, report.loadMs, f.timings, report.probe, f.notes);

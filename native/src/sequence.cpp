@@ -11,6 +11,7 @@
 #include <tuple>
 
 #include "probelights/error.h"
+#include "probelights/finish_lights.h"
 #include "probelights/stopwatch.h"
 
 namespace probelights {
@@ -83,9 +84,8 @@ std::vector<int> minimumCostAssignment(const std::vector<double>& cost, int n) {
   return result;
 }
 
-SequenceBaker::SequenceBaker(const BakeOptions& options, SequenceOptions sequence, SunAngles angles,
-                             SunCones cones)
-    : options_(options), sequence_(sequence), angles_(angles), cones_(cones) {
+SequenceBaker::SequenceBaker(const BakeOptions& options, SequenceOptions sequence, SequenceFinish finish)
+    : options_(options), sequence_(sequence), finish_(finish) {
   checkLightCount(options.lights);
   if (!usesWorkingGrid(options.method))
     throw Error("a sequence is baked by cutting each frame (variance or median cut), not by the " +
@@ -101,8 +101,8 @@ SequenceBaker::SequenceBaker(const BakeOptions& options, SequenceOptions sequenc
         "ones) to " +
         std::to_string(static_cast<int>(kMaxSmoothness)) + "; got " + got);
   }
-  if (angles == SunAngles::Fit)
-    throw Error("a sequence's sun angles are spread or points: fitting them needs each frame evaluated");
+  if (finish.evaluatorWidth < 1)
+    throw Error("the evaluator's width is at least 1 pixel, got " + std::to_string(finish.evaluatorWidth));
 }
 
 // One way to cut a frame: its partition, lights and ids, and how far the lights moved from the last frame.
@@ -136,8 +136,10 @@ double totalLuminance(const std::vector<Light>& lights) {
 
 void SequenceBaker::finish(Candidate& c, const Probe& probe, const MomentTable& table) const {
   c.result = lightsOfPartition(probe, table, options_.centroid, c.partition);
-  applySunAngles(angles_, nullptr, c.result.lights);
-  keepSunCones(cones_, c.result.lights);
+  // Matched with their regions' spread (a fit comes after the match, finishFrame).
+  applySunAngles(finish_.angles == SunAngles::Fit ? SunAngles::Spread : finish_.angles, nullptr,
+                 c.result.lights);
+  keepSunCones(finish_.cones, c.result.lights);
   // Each region's light (a region whose light is not positive has none: lights.cpp).
   const int n = options_.lights;
   const std::size_t regions = c.result.regions.size();
@@ -231,10 +233,15 @@ SequenceFrame SequenceBaker::add(const Probe& probe) {
   frame.totalRgb = chosen.result.totalRgb;
   frame.notes = chosen.result.notes;
   frame.lights = chosen.lights;
+  if (finish_.evaluates()) {
+    t.restart();
+    finishFrame(probe, table, frame);
+    frame.timings.lightsMs += t.ms();
+  }
   if (frames_ > 0) {
     double weight = 0, sum = 0;
     for (int id = 0; id < options_.lights; ++id) {
-      const Light &p = previousLights_[id], &q = frame.lights[id];
+      const Light &p = finishedLights_[id], &q = frame.lights[id];
       if (!(luminance(p.rgb) > 0) || !(luminance(q.rgb) > 0)) continue;
       const double w = luminance(q.rgb);
       weight += w, sum += w * angleBetween(p.direction, q.direction);
@@ -242,9 +249,29 @@ SequenceFrame SequenceBaker::add(const Probe& probe) {
     frame.motion = weight > 0 ? sum / weight : 0;
   }
   previous_ = std::move(chosen.partition);
-  previousLights_ = frame.lights;
+  previousLights_ = chosen.lights;  // matched as cut: the finish's moves are not carried to the next frame
+  finishedLights_ = frame.lights;
   ++frames_;
   return frame;
+}
+
+void SequenceBaker::finishFrame(const Probe& probe, const MomentTable& table, SequenceFrame& frame) const {
+  std::vector<int> lit;
+  std::vector<Light> lights;
+  for (std::size_t id = 0; id < frame.lights.size(); ++id)
+    if (luminance(frame.lights[id].rgb) > 0) lit.push_back(static_cast<int>(id)), lights.push_back(frame.lights[id]);
+  const FinishOptions how{finish_.angles, finish_.refit, finish_.moveDirections};
+  if (finish_.refit && !how.refits(lights.size()))
+    frame.notes.push_back({NoteKind::Warning, "the refit takes at most " + std::to_string(kMaxRefitLights) +
+                                                  " lights: " + std::to_string(lights.size()) +
+                                                  " lights finished without it"});
+  const Evaluator evaluator(probe, table, kDiffuse | kShadow,
+                            EvaluatorOptions{finish_.evaluatorWidth, how.refits(lights.size()),
+                                             finish_.profile, finish_.cones});
+  double shift = 0;
+  lights = finishLights(evaluator, std::move(lights), how, &shift);
+  for (std::size_t i = 0; i < lit.size(); ++i) frame.lights[lit[i]] = lights[i];
+  frame.energyShift = shift;
 }
 
 FrameResponse judgeFrame(const Probe& probe, const std::vector<Light>& lights, int evaluatorWidth) {

@@ -56,7 +56,8 @@ std::vector<SequenceOption> makeSequenceOptions() {
        ""},
   };
   for (const char* name : {"lights", "method", "centroid", "resolution", "horizon", "sun_angles", "sun_cones",
-                           "evaluate", "evaluator_width", "nonfinite"})
+                           "sun_profile", "refit", "move_directions", "evaluate", "evaluator_width",
+                           "nonfinite"})
     table.push_back(judgingOption<SequenceRequest>(name));
   return table;
 }
@@ -70,9 +71,9 @@ const std::vector<SequenceOption>& sequenceOptions() {
 
 SequenceBaker makeSequenceBaker(const SequenceRequest& request) {
   const AccuracyOptions& a = request.judging.accuracy;
-  if (a.sunAngles == SunAngles::Fit)
-    throw Error("a sequence's sun angles are spread or points (fitting them needs each frame evaluated)");
-  return SequenceBaker(request.judging.bake, request.sequence, a.sunAngles, a.sunCones);
+  return SequenceBaker(request.judging.bake, request.sequence,
+                       SequenceFinish{a.sunAngles, a.sunCones, a.refit, a.moveDirections, a.evaluatorWidth,
+                                      a.sunProfile});
 }
 
 std::vector<SequenceFile> sequenceFiles(const std::string& pattern,

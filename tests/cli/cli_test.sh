@@ -229,7 +229,8 @@ expect_error "sequence with a missing frame" "frame 5 of 3-6 has no file" bake-s
 expect_error "sequence of two sizes" "frame 2 is 32x16 latlong, the sequence's first frame 64x32 latlong" bake-sequence "$tmp/odd/o_####.pfm"
 expect_error "sequence by sh" "not by the sh method" bake-sequence "$tmp/seq/seq_####.pfm" --method sh
 expect_error "sequence smoothness" "the smoothness is a number from 0" bake-sequence "$tmp/seq/seq_####.pfm" --smoothness -1
-expect_error "sequence fitted angles" "spread or points" bake-sequence "$tmp/seq/seq_####.pfm" --sun-angles fit
+check "bake-sequence finishes frames as bake does (fitted angles, refit)" "'$bin' bake-sequence '$tmp/seq/seq_####.pfm' --lights 4 --sun-angles fit --refit -q -o - | python3 -c 'import json,sys; f = json.load(sys.stdin)[\"frames\"]; assert all(abs(x[\"energy_shift\"]) < 0.5 and len(x[\"lights\"]) == 4 for x in f), f'"
+expect_error "sequence evaluator width" "width of at least 1" bake-sequence "$tmp/seq/seq_####.pfm" --evaluator-width 0
 expect_error "sequence frames backwards" "the first frame before the last" bake-sequence "$tmp/seq/seq_####.pfm" --frames 4-2
 expect_error "sequence fps" "--fps takes frames per second" bake-sequence "$tmp/seq/seq_####.pfm" --usd "$tmp/s.usda" --fps 0
 expect_error "sequence overwriting a frame" "" bake-sequence "$tmp/seq/seq_####.pfm" -o "$tmp/seq/seq_0002.pfm"

@@ -16,6 +16,7 @@
 #include <optional>
 #include <random>
 
+#include "probelights/bake.h"
 #include "probelights/error.h"
 #include "probelights/sequence_request.h"
 #include "test_probes.h"
@@ -173,6 +174,42 @@ TEST(SequenceBaker, ADayFlickersAsTheWorldDoesAndEachFrameIsAsGoodAsASingleBake)
   EXPECT_LT(held.shadow, 1.2 * single.shadow);
 }
 
+TEST(SequenceBaker, FinishedAsTheAddonsBakeEachFrameIsAsGoodAsItsSingleBakeAndTheSunKeepsItsLight) {
+  // Angles fitted to each frame's shadows and the refit of colours and directions (the add-on's recipe),
+  // against single bakes finished the same way (bakeEvaluated).
+  AccuracyOptions a;
+  a.sunAngles = SunAngles::Fit, a.refit = true, a.moveDirections = true, a.evaluatorWidth = 512;
+  a.effects = kDiffuse | kShadow;
+  SequenceBaker baker(options(16), {}, SequenceFinish{SunAngles::Fit, SunCones::Free, true, true, 512});
+  double held[2] = {0, 0}, single[2] = {0, 0}, plain[2] = {0, 0};
+  SequenceBaker unfinished(options(16), {});
+  int lastBrightest = -1, changes = 0;
+  const int frames = 8;
+  for (int f = 0; f < frames; ++f) {
+    auto p = dayFrame(f, frames);
+    const SequenceFrame frame = baker.add(p.probe);
+    ASSERT_EQ(frame.lights.size(), 16u);
+    EXPECT_TRUE(std::isfinite(frame.energyShift));
+    EXPECT_LT(std::abs(frame.energyShift), 0.2) << f;
+    const EffectErrors mine = judgeFrame(p.probe, frame.lights).errors;
+    const EffectErrors alone = judgeFrame(p.probe, bakeEvaluated(p.probe, options(16), a).bake.lights).errors;
+    const EffectErrors asCut = judgeFrame(p.probe, unfinished.add(p.probe).lights).errors;
+    held[0] += mine.diffuse, held[1] += mine.shadow, single[0] += alone.diffuse, single[1] += alone.shadow;
+    plain[0] += asCut.diffuse, plain[1] += asCut.shadow;
+    changes += f > 0 && brightest(frame.lights) != lastBrightest;
+    lastBrightest = brightest(frame.lights);
+    for (const Light& l : frame.lights) EXPECT_GE(l.angle, 0);
+  }
+  std::printf("finished day of %d frames: diffuse %.4f (single bakes %.4f, unfinished %.4f), shadow %.4f "
+              "(%.4f, %.4f)\n",
+              frames, held[0] / frames, single[0] / frames, plain[0] / frames, held[1] / frames,
+              single[1] / frames, plain[1] / frames);
+  EXPECT_LT(held[0], 1.2 * single[0]);
+  EXPECT_LT(held[1], 1.2 * single[1]);
+  EXPECT_LT(held[0] + held[1], plain[0] + plain[1]);  // finishing pays
+  EXPECT_LE(changes, 1);
+}
+
 TEST(SequenceBaker, MoreSmoothnessKeepsTheCutsLonger) {
   const int loose = judgeDay(0, 24).recuts, usual = judgeDay(0.5, 24).recuts, held = judgeDay(5, 24).recuts;
   std::printf("frames cut afresh of 24: smoothness 0: %d, 0.5: %d, 5: %d\n", loose, usual, held);
@@ -251,7 +288,8 @@ TEST(SequenceBaker, AFrameOfAnotherSizeOrABadRequestIsRefused) {
   EXPECT_THROW(SequenceBaker(options(8), {-0.1}), Error);
   EXPECT_THROW(SequenceBaker(options(8), {std::numeric_limits<double>::infinity()}), Error);
   EXPECT_THROW(SequenceBaker(options(8), {std::nan("")}), Error);
-  EXPECT_THROW(SequenceBaker(options(8), {}, SunAngles::Fit), Error);
+  EXPECT_THROW(SequenceBaker(options(8), {}, SequenceFinish{SunAngles::Fit, SunCones::Free, true, false, 0}),
+               Error);
 }
 
 TEST(SequenceFiles, FramesAreFoundAsBlenderNumbersThem) {

@@ -39,6 +39,20 @@ struct SequenceOptions {
 };
 inline constexpr double kMaxSmoothness = 100;
 
+// How each frame's lights are finished once they are matched (finish_lights.h): spread or point angles alone;
+// or, with an evaluator of the frame (evaluate.h, diffuse and shadow at evaluatorWidth), angles fitted to the
+// frame's shadows and the irradiance refit of colours (and directions), as the add-on's single bake finishes
+// its lights. Only lit lights are finished: a dark id stays dark. The refit trades the exact energy for the
+// lights' diffuse light and shadows (SequenceFrame::energyShift); without it every frame is exact.
+struct SequenceFinish {
+  SunAngles angles = SunAngles::Spread;
+  SunCones cones = SunCones::Free;
+  bool refit = false, moveDirections = false;  // up to kMaxRefitLights lights (more: a note, no refit)
+  int evaluatorWidth = 512;
+  SunProfile profile = SunProfile::Cone;
+  bool evaluates() const { return refit || angles == SunAngles::Fit; }
+};
+
 struct SequenceFrame {
   // lights[id]: the same light in every frame. A light with no region in this frame (the probe has fewer
   // lit cells than lights) is dark (rgb 0, solid angle 0) and keeps its last direction.
@@ -50,6 +64,7 @@ struct SequenceFrame {
   // How far the lights moved since the previous frame: the mean angle (radians) weighted by energy, over
   // the lights lit in both; 0 for the first frame.
   double motion = 0;
+  double energyShift = 0;  // with the refit: the sum of the lights' channels over the probe's - 1 (else 0)
   std::vector<Note> notes;
   BakeTimings timings;
 };
@@ -57,10 +72,11 @@ struct SequenceFrame {
 class SequenceBaker {
  public:
   // options: a grid method (variance or median cut) and the count (at most kMaxSequenceLights); the
-  // working resolution is fixed by the first frame. angles: Spread or Points (a fit needs an evaluator per
-  // frame, which a sequence does not make). Throws Error for a request it cannot take.
+  // working resolution is fixed by the first frame. Throws Error for a request it cannot take.
+  SequenceBaker(const BakeOptions& options, SequenceOptions sequence, SequenceFinish finish);
   SequenceBaker(const BakeOptions& options, SequenceOptions sequence, SunAngles angles = SunAngles::Spread,
-                SunCones cones = SunCones::Free);
+                SunCones cones = SunCones::Free)
+      : SequenceBaker(options, sequence, SequenceFinish{angles, cones}) {}
 
   // The next frame. Every frame must have the first's size and projection (throws Error naming both).
   SequenceFrame add(const Probe& probe);
@@ -70,15 +86,17 @@ class SequenceBaker {
   struct Candidate;
   // A candidate's lights, their ids (matched to the previous frame's lights) and its change.
   void finish(Candidate& candidate, const Probe& probe, const MomentTable& table) const;
+  // The chosen lights finished as finish_ asks (angles fitted, refit), lit ids only.
+  void finishFrame(const Probe& probe, const MomentTable& table, SequenceFrame& frame) const;
 
   BakeOptions options_;
   SequenceOptions sequence_;
-  SunAngles angles_;
-  SunCones cones_;
+  SequenceFinish finish_;
   int frames_ = 0, width_ = 0, height_ = 0;
   ProjectionKind projection_ = ProjectionKind::LatLong;
   Partition previous_;                 // the last frame's cuts, in cells
-  std::vector<Light> previousLights_;  // by id
+  std::vector<Light> previousLights_;  // by id, as cut (what the next frame is matched to)
+  std::vector<Light> finishedLights_;  // by id, as the last frame gave them (its motion's start)
 };
 
 // How a frame's lights render, judged as a single bake is (evaluate.h): their errors on a sphere's shading

@@ -58,22 +58,10 @@ def _expect_refusal(text, **settings):
     raise AssertionError("Bake animation did not refuse")
 
 
-def test_an_image_sequence_bakes_into_keyed_lamps_that_keep_their_ids():
-    harness.empty_scene()
+def _check_frames(lamps, frames, strength, exact):
+    """Each lamp on sampled frames is light k of the core's frame (direction, irradiance, angle); with `exact`
+    the lamps sum to each frame's probe. Returns the id of the lamp that carries the moving spot."""
     scene = bpy.context.scene
-    with tempfile.TemporaryDirectory() as folder:
-        _write_sequence(folder)
-        world, node = _sequence_world(folder)
-        scene.frame_start, scene.frame_end = 1, FRAMES
-        lamps = _bake_animation(count=6, shadows="SPREAD")
-        # The core's sequence bake of the same frames, read as Blender reads them.
-        animation = harness.addon_module("animation")
-        baker = _probelights.SequenceBaker(lights=6, sun_angles="spread")
-        frames = [baker.add(animation.sequence_pixels(node, f), frame=f) for f in range(1, FRAMES + 1)]
-    assert len(lamps) == 6
-    for lamp in lamps:  # every lamp keyed on every frame
-        fcurves = harness.addon_module("animation")._fcurves(lamp.animation_data)
-        assert {len(c.keyframe_points) for c in fcurves} == {FRAMES}, lamp.name
     spot_lamp = set()
     for f in (1, 2, 7, FRAMES):
         scene.frame_set(f)
@@ -81,20 +69,47 @@ def test_an_image_sequence_bakes_into_keyed_lamps_that_keep_their_ids():
         for k, lamp in enumerate(lamps):
             if lights["rgb"][k] @ LUM > 0:
                 assert harness.angle_deg(sun_direction(lamp), lights["direction"][k]) < 0.01, (f, k)
-            assert np.allclose(irradiance(lamp), 2.0 * lights["rgb"][k], rtol=1e-4, atol=1e-6), (f, k)
+            assert np.allclose(irradiance(lamp), strength * lights["rgb"][k], rtol=1e-4, atol=1e-6), (f, k)
             assert abs(lamp.data.angle - lights["angle"][k]) < 1e-5
         total = sum(irradiance(lamp) for lamp in lamps)
-        assert np.allclose(total, 2.0 * frames[f - 1]["total_rgb"], rtol=1e-4), (f, total)  # energy exact
+        if exact:  # the lamps sum to the probe, channel by channel
+            assert frames[f - 1]["energy_shift"] == 0.0
+            assert np.allclose(total, strength * frames[f - 1]["total_rgb"], rtol=1e-4), (f, total)
+        else:  # the refit's shift of the sum of the channels, as the frame reports it
+            probe = strength * sum(frames[f - 1]["total_rgb"]) * (1.0 + frames[f - 1]["energy_shift"])
+            assert abs(sum(total) - probe) < 1e-4 * probe, (f, total, probe)
         x, y = _spot(f)
         near = [k for k, lamp in enumerate(lamps) if harness.angle_deg(sun_direction(lamp),
                                                                        latlong_direction(x, y, W, H)) < 6]
         spot_lamp.add(max(near, key=lambda k: irradiance(lamps[k]) @ LUM))
     assert len(spot_lamp) == 1, spot_lamp  # one lamp carries the moving spot all along
+    return spot_lamp.pop()
+
+
+def test_an_image_sequence_bakes_into_keyed_lamps_that_keep_their_ids():
+    harness.empty_scene()
+    scene = bpy.context.scene
+    animation = harness.addon_module("animation")
+    with tempfile.TemporaryDirectory() as folder:
+        _write_sequence(folder)
+        world, node = _sequence_world(folder)
+        scene.frame_start, scene.frame_end = 1, FRAMES
+        for refit in (False, True):  # as cut (energy exact), and finished as a single bake (the default)
+            lamps = _bake_animation(count=6, refit=refit)
+            # The core's sequence bake of the same frames with the add-on's options, read as Blender reads them.
+            baker = _probelights.SequenceBaker(**animation.sequence_options(scene, scene.probe_lights, 0.1))
+            frames = [baker.add(animation.sequence_pixels(node, f), frame=f) for f in range(1, FRAMES + 1)]
+            assert len(lamps) == 6
+            for lamp in lamps:  # every lamp keyed on every frame
+                fcurves = animation._fcurves(lamp.animation_data)
+                assert {len(c.keyframe_points) for c in fcurves} == {FRAMES}, lamp.name
+            spot = _check_frames(lamps, frames, 2.0, exact=not refit)
+            print("  refit %s: %d lamps keyed on %d frames; the spot kept lamp %d; energy shift up to %.2f %%" % (
+                refit, len(lamps), FRAMES, spot, 100 * max(abs(f["energy_shift"]) for f in frames)))
     # The world's strength is still followed, on every frame.
     node.id_data.nodes["Background"].inputs["Strength"].default_value = 3.0
     scene.frame_set(7)
     assert np.allclose(irradiance(lamps[0]), 3.0 * frames[6]["lights"]["rgb"][0], rtol=1e-4, atol=1e-6)
-    print("  %d lamps keyed on %d frames; the spot kept lamp %d" % (len(lamps), FRAMES, spot_lamp.pop()))
 
 
 def test_a_bake_of_an_image_sequence_reads_the_scenes_frame_and_restore_takes_the_keys():
