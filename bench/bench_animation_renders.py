@@ -5,7 +5,9 @@ each frame's own single bake, frame by frame (docs/results/sequences.md, "Render
       build/probe_lights-0.1.0-linux_x64.zip ../shared
 
 The world is bench_sequence.py's day made from the bundled probe in 24 frames (a 2-degree sun crossing it, its
-strength and the exposure changing), as the world's image sequence. For each way of lighting, on the 8x8 blocks
+strength and the exposure changing), as the world's image sequence; with PROBELIGHTS_BENCH_WORLD=sky, a physical
+Sky Texture whose sun rises, culminates at 60 degrees and sets over the 24 frames (rendered each frame by the
+add-on, as single bakes render it too). For each way of lighting, on the 8x8 blocks
 of lit object pixels (render_scene.block_difference's rule, from the world-lit first frame):
   error    the mean over frames of block_difference against that frame's world-lit render;
   change   the frame-to-frame change, sum |L(f+1) - L(f)|, over the world-lit renders' own;
@@ -53,14 +55,31 @@ def measure(world_lit, lit, frames):
     return error, change, jitter
 
 
+def sky_day():
+    """A physical Sky Texture whose sun rises in the east, culminates at 60 degrees in the south and sets in the
+    west over the frames (keys at the first, middle and last frame: Blender's Bezier between them)."""
+    world = harness.sky_world(elevation_deg=2.0, rotation_deg=-90.0)
+    sky = next(n for n in world.node_tree.nodes if n.bl_idname == "ShaderNodeTexSky")
+    for frame, elevation, rotation in ((1, 2.0, -90.0), ((FRAMES + 1) // 2, 60.0, 0.0), (FRAMES, 2.0, 90.0)):
+        sky.sun_elevation, sky.sun_rotation = np.radians(elevation), np.radians(rotation)
+        sky.keyframe_insert("sun_elevation", frame=frame)
+        sky.keyframe_insert("sun_rotation", frame=frame)
+    return world
+
+
+SKY = os.environ.get("PROBELIGHTS_BENCH_WORLD") == "sky"
 with tempfile.TemporaryDirectory() as tmp:
     folder = pathlib.Path(tmp)
-    make_day(read_hdr(harness.BUNDLED_PROBE).astype(np.float32), folder, FRAMES, write=write_hdr, ext="hdr")
     harness.empty_scene()
-    image = bpy.data.images.load(str(folder / "day_0001.hdr"))
-    image.source = "SEQUENCE"
-    world = harness.env_world(image)
-    next(n for n in world.node_tree.nodes if n.bl_idname == "ShaderNodeTexEnvironment").image_user.frame_duration = FRAMES
+    if SKY:
+        world = sky_day()
+    else:
+        make_day(read_hdr(harness.BUNDLED_PROBE).astype(np.float32), folder, FRAMES, write=write_hdr, ext="hdr")
+        image = bpy.data.images.load(str(folder / "day_0001.hdr"))
+        image.source = "SEQUENCE"
+        world = harness.env_world(image)
+        env = next(n for n in world.node_tree.nodes if n.bl_idname == "ShaderNodeTexEnvironment")
+        env.image_user.frame_duration = FRAMES
     render_scene.sphere_over_plane(128, 96, 128)
     scene = bpy.context.scene
     scene.frame_start, scene.frame_end = 1, FRAMES
@@ -78,8 +97,9 @@ with tempfile.TemporaryDirectory() as tmp:
         assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=LIGHTS) == {"FINISHED"}
         single.append(render_scene.render())
     rows.append(("each frame its own bake (Bake probe to lights)", measure(world_lit, lit, single)))
-    print("Blender %s, %d frames, %d lamps, %d lit blocks, %.0f s" % (bpy.app.version_string, FRAMES, LIGHTS,
-                                                                      lit.sum(), time.perf_counter() - t))
+    print("Blender %s, %s, %d frames, %d lamps, %d lit blocks, %.0f s" % (
+        bpy.app.version_string, "Sky Texture day" if SKY else "day sequence", FRAMES, LIGHTS, lit.sum(),
+        time.perf_counter() - t))
     print("| lamps | error | change | jitter |\n|---|---:|---:|---:|")
     for name, (error, change, jitter) in rows:
         print("| %s | %.2f %% | %.2f | %.2f |" % (name, 100 * error, change, jitter))

@@ -13,7 +13,9 @@ own bake, as baking each frame apart gives) and as a sequence at several smoothn
 per-frame diffuse and shadow errors (evaluate.h, as single bakes are judged), the flicker (the lamp-lit
 response's change from frame to frame over the world-lit response's own, on the same receivers), the lights'
 energy-weighted motion a frame (degrees, id to id: what a lamp's keyframes move), the frames cut afresh, and
-the bake's milliseconds a frame (reading excluded). Needs numpy.
+the bake's milliseconds a frame (reading excluded). "Finished" rows finish every frame as the add-on's single
+bake does (angles fitted to the frame's shadows, colours and directions refit: --sun-angles fit --refit
+--refit-directions). Needs numpy.
 """
 import argparse
 import json
@@ -77,9 +79,12 @@ def main():
         make_video(probe, folder, args.frames // 2)
         for name in ("day", "video"):
             for lights in (16, 64):
+                finished = ["--sun-angles", "fit", "--refit", "--refit-directions"]
                 for label, extra in (("each frame alone", ["--independent"]), ("smoothness 0", ["--smoothness", "0"]),
                                      ("smoothness 0.1 (default)", []), ("smoothness 0.5", ["--smoothness", "0.5"]),
-                                     ("smoothness 2", ["--smoothness", "2"])):
+                                     ("smoothness 2", ["--smoothness", "2"]),
+                                     ("finished, each frame alone", ["--independent"] + finished),
+                                     ("finished, smoothness 0.1", finished)):
                     out = folder / "out.json"
                     subprocess.run([args.bin, "bake-sequence", str(folder / (name + "_####.pfm")), "--lights",
                                     str(lights), "--evaluate", "-q", "-o", str(out)] + extra, check=True,

@@ -48,6 +48,22 @@ def test_frames_keep_their_lights_and_their_light():
 
 
 @pytest.mark.skipif(pl.build != "full", reason="runs the CLI: the full module's")
+def test_frames_finished_as_a_single_bake_report_their_energy_shift():
+    # The add-on's recipe: angles fitted to each frame's shadows, colours and directions refit.
+    finished = pl.SequenceBaker(lights=8, sun_angles="fit", refit=True, move_directions=True, evaluate=True)
+    plain = pl.SequenceBaker(lights=8, evaluate=True)
+    errors = [0.0, 0.0]
+    for f, (pixels, _) in enumerate(day(6)):
+        a, b = finished.add(pixels, frame=f + 1), plain.add(pixels, frame=f + 1)
+        shift = a["energy_shift"]
+        assert b["energy_shift"] == 0.0 and abs(shift) < 0.2
+        assert math.isclose(a["lights"]["rgb"].sum(), sum(a["total_rgb"]) * (1 + shift), rel_tol=1e-9)
+        assert np.all(a["lights"]["angle"] >= 0) and np.all(np.isfinite(a["lights"]["direction"]))
+        errors[0] += a["evaluation"]["shadow"]
+        errors[1] += b["evaluation"]["shadow"]
+    assert errors[0] < errors[1], errors  # the fitted angles and the refit pay on the shadows
+
+
 def test_the_module_bakes_the_frames_as_the_command_does(tmp_path):
     cli = os.path.join(BUILD, "bin", "probelights")
     baker = pl.SequenceBaker(lights=6, smoothness=0.3)
