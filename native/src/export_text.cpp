@@ -67,7 +67,8 @@ std::vector<std::array<double, 4>> turnsAlong(const std::vector<Vec3>& direction
     std::array<double, 4> arc{a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x,
                               1 + a.x * b.x + a.y * b.y + a.z * b.z};
     if (arc[3] < 1e-12) {
-      const Vec3 across = std::abs(a.x) < 0.9 ? Vec3{0, -a.z, a.y} : Vec3{a.z, 0, -a.x};  // a x (1,0,0) or (0,1,0)
+      const Vec3 across =
+          std::abs(a.x) < 0.9 ? Vec3{0, -a.z, a.y} : Vec3{a.z, 0, -a.x};  // a x (1,0,0) or (0,1,0)
       arc = {across.x, across.y, across.z, 0};
     }
     const double n = std::sqrt(arc[0] * arc[0] + arc[1] * arc[1] + arc[2] * arc[2] + arc[3] * arc[3]);
@@ -115,6 +116,5 @@ std::array<double, 3> colourOf(const Written& w) {
   if (!(w.peak > 0)) return {1, 1, 1};
   return {w.rgb[0] / w.peak, w.rgb[1] / w.peak, w.rgb[2] / w.peak};
 }
-
 
 }  // namespace probelights::exporttext

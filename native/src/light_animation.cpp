@@ -118,7 +118,8 @@ struct GltfBuffer {
       bytes.insert(bytes.end(), b, b + 4);
     }
     const char* type = width == 1 ? "SCALAR" : width == 3 ? "VEC3" : "VEC4";
-    views += std::string(count ? ",\n" : "") + "    {\"buffer\": 0, \"byteOffset\": " + std::to_string(offset) +
+    views += std::string(count ? ",\n" : "") +
+             "    {\"buffer\": 0, \"byteOffset\": " + std::to_string(offset) +
              ", \"byteLength\": " + std::to_string(values.size() * 4) + "}";
     accessors += std::string(count ? ",\n" : "") + "    {\"bufferView\": " + std::to_string(count) +
                  ", \"componentType\": 5126, \"count\": " + std::to_string(values.size() / width) +
@@ -134,7 +135,8 @@ struct GltfBuffer {
 }  // namespace
 
 std::string gltfAnimation(const std::vector<std::pair<int, std::vector<Light>>>& frames,
-                          const ExportOptions& options, const std::string& generator, double framesPerSecond) {
+                          const ExportOptions& options, const std::string& generator,
+                          double framesPerSecond) {
   if (frames.empty()) throw Error("an animated glTF needs at least one frame");
   const std::size_t n = frames.front().second.size();
   for (const auto& [frame, lights] : frames)
@@ -155,8 +157,8 @@ std::string gltfAnimation(const std::vector<std::pair<int, std::vector<Light>>>&
   int sampler = 0;
   auto channel = [&](int accessor, const std::string& target) {
     const std::string comma = sampler ? ",\n" : "";
-    samplers += comma + "      {\"input\": " + std::to_string(input) + ", \"output\": " +
-                std::to_string(accessor) + ", \"interpolation\": \"LINEAR\"}";
+    samplers += comma + "      {\"input\": " + std::to_string(input) +
+                ", \"output\": " + std::to_string(accessor) + ", \"interpolation\": \"LINEAR\"}";
     channels += comma + "      {\"sampler\": " + std::to_string(sampler++) + ", \"target\": " + target + "}";
   };
   for (std::size_t i = 0; i < n; ++i) {
@@ -170,8 +172,8 @@ std::string gltfAnimation(const std::vector<std::pair<int, std::vector<Light>>>&
       if (sun) {
         moves.insert(moves.end(), turns[f].begin(), turns[f].end());
       } else {
-        moves.insert(moves.end(), {static_cast<float>(u.x * d), static_cast<float>(u.y * d),
-                                   static_cast<float>(u.z * d)});
+        moves.insert(moves.end(),
+                     {static_cast<float>(u.x * d), static_cast<float>(u.y * d), static_cast<float>(u.z * d)});
       }
       const auto c = colourOf(w);
       colours.insert(colours.end(), c.begin(), c.end());
@@ -180,9 +182,10 @@ std::string gltfAnimation(const std::vector<std::pair<int, std::vector<Light>>>&
     const std::string node = std::to_string(i);
     channel(buffer.add(moves, sun ? 4 : 3),
             "{\"node\": " + node + ", \"path\": \"" + (sun ? "rotation" : "translation") + "\"}");
-    const std::string pointer = "{\"path\": \"pointer\", \"extensions\": {\"KHR_animation_pointer\": "
-                                "{\"pointer\": \"/extensions/KHR_lights_punctual/lights/" +
-                                node + "/";
+    const std::string pointer =
+        "{\"path\": \"pointer\", \"extensions\": {\"KHR_animation_pointer\": "
+        "{\"pointer\": \"/extensions/KHR_lights_punctual/lights/" +
+        node + "/";
     channel(buffer.add(colours, 3), pointer + "color\"}}}");
     channel(buffer.add(intensities, 1), pointer + "intensity\"}}}");
   }
@@ -192,10 +195,11 @@ std::string gltfAnimation(const std::vector<std::pair<int, std::vector<Light>>>&
   const std::string used = "\"extensionsUsed\": [\"KHR_lights_punctual\"";
   document.replace(document.find(used), used.size(), used + ", \"KHR_animation_pointer\"");
   return document + ",\n  \"animations\": [{\"name\": \"probelights\", \"samplers\": [\n" + samplers +
-         "\n    ], \"channels\": [\n" + channels + "\n    ]}],\n  \"buffers\": [{\"byteLength\": " +
-         std::to_string(buffer.bytes.size()) + ", \"uri\": \"data:application/octet-stream;base64," +
-         base64(buffer.bytes) + "\"}],\n  \"bufferViews\": [\n" + buffer.views + "\n  ],\n  \"accessors\": [\n" +
-         buffer.accessors + "\n  ]\n}\n";
+         "\n    ], \"channels\": [\n" + channels +
+         "\n    ]}],\n  \"buffers\": [{\"byteLength\": " + std::to_string(buffer.bytes.size()) +
+         ", \"uri\": \"data:application/octet-stream;base64," + base64(buffer.bytes) +
+         "\"}],\n  \"bufferViews\": [\n" + buffer.views + "\n  ],\n  \"accessors\": [\n" + buffer.accessors +
+         "\n  ]\n}\n";
 }
 
 }  // namespace probelights

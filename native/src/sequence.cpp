@@ -259,15 +259,16 @@ void SequenceBaker::finishFrame(const Probe& probe, const MomentTable& table, Se
   std::vector<int> lit;
   std::vector<Light> lights;
   for (std::size_t id = 0; id < frame.lights.size(); ++id)
-    if (luminance(frame.lights[id].rgb) > 0) lit.push_back(static_cast<int>(id)), lights.push_back(frame.lights[id]);
+    if (luminance(frame.lights[id].rgb) > 0)
+      lit.push_back(static_cast<int>(id)), lights.push_back(frame.lights[id]);
   const FinishOptions how{finish_.angles, finish_.refit, finish_.moveDirections};
   if (finish_.refit && !how.refits(lights.size()))
     frame.notes.push_back({NoteKind::Warning, "the refit takes at most " + std::to_string(kMaxRefitLights) +
                                                   " lights: " + std::to_string(lights.size()) +
                                                   " lights finished without it"});
-  const Evaluator evaluator(probe, table, kDiffuse | kShadow,
-                            EvaluatorOptions{finish_.evaluatorWidth, how.refits(lights.size()),
-                                             finish_.profile, finish_.cones});
+  const Evaluator evaluator(
+      probe, table, kDiffuse | kShadow,
+      EvaluatorOptions{finish_.evaluatorWidth, how.refits(lights.size()), finish_.profile, finish_.cones});
   double shift = 0;
   lights = finishLights(evaluator, std::move(lights), how, &shift);
   for (std::size_t i = 0; i < lit.size(); ++i) frame.lights[lit[i]] = lights[i];

@@ -55,9 +55,9 @@ std::vector<SequenceOption> makeSequenceOptions() {
        },
        ""},
   };
-  for (const char* name : {"lights", "method", "centroid", "resolution", "horizon", "sun_angles", "sun_cones",
-                           "sun_profile", "refit", "move_directions", "evaluate", "evaluator_width",
-                           "nonfinite"})
+  for (const char* name :
+       {"lights", "method", "centroid", "resolution", "horizon", "sun_angles", "sun_cones", "sun_profile",
+        "refit", "move_directions", "evaluate", "evaluator_width", "nonfinite"})
     table.push_back(judgingOption<SequenceRequest>(name));
   return table;
 }
@@ -71,9 +71,9 @@ const std::vector<SequenceOption>& sequenceOptions() {
 
 SequenceBaker makeSequenceBaker(const SequenceRequest& request) {
   const AccuracyOptions& a = request.judging.accuracy;
-  return SequenceBaker(request.judging.bake, request.sequence,
-                       SequenceFinish{a.sunAngles, a.sunCones, a.refit, a.moveDirections, a.evaluatorWidth,
-                                      a.sunProfile});
+  return SequenceBaker(
+      request.judging.bake, request.sequence,
+      SequenceFinish{a.sunAngles, a.sunCones, a.refit, a.moveDirections, a.evaluatorWidth, a.sunProfile});
 }
 
 std::vector<SequenceFile> sequenceFiles(const std::string& pattern,

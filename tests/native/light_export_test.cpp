@@ -177,7 +177,8 @@ TEST(LightExport, AnimatedGltfKeysEveryLightOnEveryFrame) {
   std::vector<std::pair<int, std::vector<Light>>> frames;
   for (int f = 0; f < 3; ++f) {
     const double a = kPi / 2 * f;
-    frames.push_back({10 + f, {light({std::cos(a), std::sin(a), 0}, {1, 1, 1}), light({0, 0, 1}, {1.0 + f, 2, 2})}});
+    frames.push_back(
+        {10 + f, {light({std::cos(a), std::sin(a), 0}, {1, 1, 1}), light({0, 0, 1}, {1.0 + f, 2, 2})}});
   }
   const auto doc = nlohmann::json::parse(gltfAnimation(frames, {}, "t", 25));
   EXPECT_EQ(doc["extensionsUsed"], nlohmann::json({"KHR_lights_punctual", "KHR_animation_pointer"}));
@@ -208,7 +209,7 @@ TEST(LightExport, AnimatedGltfKeysEveryLightOnEveryFrame) {
   for (double& c : mid) c /= norm;
   const double x = mid[0], y = mid[1], z = mid[2], w = mid[3];  // the turned +Z, in glTF's frame
   const Vec3 shines{2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)};
-  EXPECT_NEAR(shines.x, std::sqrt(0.5), 1e-6);   // Blender's +X+Y is glTF's (x, 0, -y)
+  EXPECT_NEAR(shines.x, std::sqrt(0.5), 1e-6);  // Blender's +X+Y is glTF's (x, 0, -y)
   EXPECT_NEAR(shines.z, -std::sqrt(0.5), 1e-6);
   EXPECT_NEAR(shines.y, 0, 1e-6);
   // Light 1's intensity, lux a frame.

@@ -200,10 +200,11 @@ TEST(SequenceBaker, FinishedAsTheAddonsBakeEachFrameIsAsGoodAsItsSingleBakeAndTh
     lastBrightest = brightest(frame.lights);
     for (const Light& l : frame.lights) EXPECT_GE(l.angle, 0);
   }
-  std::printf("finished day of %d frames: diffuse %.4f (single bakes %.4f, unfinished %.4f), shadow %.4f "
-              "(%.4f, %.4f)\n",
-              frames, held[0] / frames, single[0] / frames, plain[0] / frames, held[1] / frames,
-              single[1] / frames, plain[1] / frames);
+  std::printf(
+      "finished day of %d frames: diffuse %.4f (single bakes %.4f, unfinished %.4f), shadow %.4f "
+      "(%.4f, %.4f)\n",
+      frames, held[0] / frames, single[0] / frames, plain[0] / frames, held[1] / frames, single[1] / frames,
+      plain[1] / frames);
   EXPECT_LT(held[0], 1.2 * single[0]);
   EXPECT_LT(held[1], 1.2 * single[1]);
   EXPECT_LT(held[0] + held[1], plain[0] + plain[1]);  // finishing pays
