@@ -29,7 +29,10 @@ from .properties import NATIVE_SUN_ANGLES, cut_method
 from .world_graph import ProbeSource, find_probe, sequence_number, sequence_path
 from .world_image import WorldRender, image_pixels
 
-RENDER_WIDTH = 512  # lat-long width an animated world without an image sequence is rendered at, a frame
+# Lat-long width an animated world without an image sequence is rendered at, a frame: a single bake's
+# (bake.RENDER_WIDTH). At 512 a Sky Texture's sun is a pixel or two, and its fitted angle and the renders of a
+# sky day jumped from frame to frame (docs/results/sequences.md: 6.6 % from the world, jitter 3.2).
+RENDER_WIDTH = 1024
 MAX_FRAMES = 100000
 
 

@@ -170,7 +170,12 @@ def test_an_animated_sky_is_rendered_frame_by_frame():
         sky.sun_elevation = math.radians(elevation)
         sky.keyframe_insert("sun_elevation", frame=frame)
     scene.frame_start, scene.frame_end = 1, 3
-    lamps = _bake_animation(count=8)  # rendered at the add-on's 512 x 256: a pixel holds half the sun's disc
+    animation = harness.addon_module("animation")
+    animation.RENDER_WIDTH, width = 512, animation.RENDER_WIDTH  # half the add-on's: enough to find the sun
+    try:
+        lamps = _bake_animation(count=8)
+    finally:
+        animation.RENDER_WIDTH = width
     elevations = []
     for f in (1, 2, 3):
         scene.frame_set(f)
