@@ -158,7 +158,7 @@ def frame_range(scene, start, end):
     return first, last
 
 
-def keyframe_lamps(scene, lamps, frames, kind, distance):
+def keyframe_lamps(lamps, frames, kind, distance):
     """Keys lamp k with light k of every frame: location and rotation (each key the last one turned by the
     shortest arc to the new direction, so between frames a sun sweeps the great circle), colour, strength (before
     the world's strength: ENERGY_KEY when the energy follows the Strength by a driver) and a sun's angle. A dark
@@ -263,9 +263,11 @@ class AnimationBake:
         source = self.frames_source.source
         lamps = make_lights(scene, scene.world, self.frames[0][1], source, settings.light_type, settings.distance,
                             lights_diffuse=settings.replace_diffuse, lights_glossy=settings.replace_reflections)
-        keyframe_lamps(scene, lamps, self.frames, kind, settings.distance)
+        keyframe_lamps(lamps, self.frames, kind, settings.distance)
         notes, warnings = finish_world(context, settings, lamps, source, residual=None)
-        warnings = self.warnings + warnings
+        # The core's warnings (a refit past its limit, ...), each once however many frames gave it.
+        said = {n["text"] for _, f in self.frames for n in f["notes"] if n["kind"] == "warning"}
+        warnings = self.warnings + sorted(said) + warnings
         keys_s = time.perf_counter() - t0
         motion = [f["motion"] for _, f in self.frames[1:]]
         recut = sum(1 for _, f in self.frames[1:] if f["recut"])
