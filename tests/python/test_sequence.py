@@ -47,7 +47,6 @@ def test_frames_keep_their_lights_and_their_light():
     assert len(sun_ids) == 1 and baker.frames == 12
 
 
-@pytest.mark.skipif(pl.build != "full", reason="runs the CLI: the full module's")
 def test_frames_finished_as_a_single_bake_report_their_energy_shift():
     # The add-on's recipe: angles fitted to each frame's shadows, colours and directions refit.
     finished = pl.SequenceBaker(lights=8, sun_angles="fit", refit=True, move_directions=True, evaluate=True)
@@ -64,6 +63,7 @@ def test_frames_finished_as_a_single_bake_report_their_energy_shift():
     assert errors[0] < errors[1], errors  # the fitted angles and the refit pay on the shadows
 
 
+@pytest.mark.skipif(pl.build != "full", reason="runs the CLI: the full module's")
 def test_the_module_bakes_the_frames_as_the_command_does(tmp_path):
     cli = os.path.join(BUILD, "bin", "probelights")
     baker = pl.SequenceBaker(lights=6, smoothness=0.3)
