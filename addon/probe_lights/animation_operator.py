@@ -5,10 +5,11 @@ import bpy
 
 from .animation import AnimationBake, report_line
 from .errors import ProbeError
-from .properties import SETTING_NAMES, bake_settings
+from .modal_steps import ModalSteps
+from .properties import SETTING_NAMES, bake_settings, from_panel
 
 
-class PROBE_LIGHTS_OT_bake_animation(bpy.types.Operator):
+class PROBE_LIGHTS_OT_bake_animation(ModalSteps, bpy.types.Operator):
     """Bake a world that changes over time (an image sequence, an animated sky, keyframed world nodes) frame by
     frame into lamps that keep their identity, keyframed on every frame of the scene's range. Esc stops"""
 
@@ -43,10 +44,7 @@ class PROBE_LIGHTS_OT_bake_animation(bpy.types.Operator):
             return {"CANCELLED"}
 
     def invoke(self, context, event):
-        settings = context.scene.probe_lights
-        for name in SETTING_NAMES:
-            if not self.properties.is_property_set(name):
-                setattr(self, name, getattr(settings, name))
+        from_panel(self, context.scene.probe_lights)
         if context.window is None:
             return self.execute(context)
         try:
@@ -54,25 +52,11 @@ class PROBE_LIGHTS_OT_bake_animation(bpy.types.Operator):
         except ProbeError as e:
             self.report({"ERROR"}, str(e))
             return {"CANCELLED"}
-        wm = context.window_manager
-        self._timer = wm.event_timer_add(0.01, window=context.window)
-        wm.progress_begin(0, self._bake.total)
-        wm.modal_handler_add(self)
-        self._status(context)
-        return {"RUNNING_MODAL"}
+        return self._start_steps(context, self._bake.total)
 
-    def _status(self, context, text=None):
-        if context.workspace is not None:
-            done = len(self._bake.frames)
-            context.workspace.status_text_set(text if text is not None else "Baking animation: %d of %d frames "
-                                              "(Esc stops, nothing changes)" % (done, self._bake.total))
-
-    def _end(self, context):
-        wm = context.window_manager
-        wm.event_timer_remove(self._timer)
-        wm.progress_end()
-        if context.workspace is not None:
-            context.workspace.status_text_set(None)
+    def _status_text(self):
+        return "Baking animation: %d of %d frames (Esc stops, nothing changes)" % (len(self._bake.frames),
+                                                                                 self._bake.total)
 
     def modal(self, context, event):
         if event.type == "ESC":
@@ -90,8 +74,7 @@ class PROBE_LIGHTS_OT_bake_animation(bpy.types.Operator):
             self._bake.close()
             self.report({"ERROR"}, str(e))
             return {"CANCELLED"}
-        context.window_manager.progress_update(len(self._bake.frames))
-        self._status(context)
+        self._show_progress(context, len(self._bake.frames))
         if not done:
             return {"RUNNING_MODAL"}
         self._end(context)

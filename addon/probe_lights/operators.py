@@ -9,7 +9,8 @@ from . import cycles_settings, eevee_settings, native, probe_volumes
 from .bake import RENDER_WIDTH, bake_world, needs_render, report_lines, restore_world, world_probe
 from .blender_caps import has_eevee_next, preset, sun_profile
 from .errors import ProbeError
-from .properties import SETTING_NAMES, bake_settings, cut_method
+from .modal_steps import ModalSteps
+from .properties import SETTING_NAMES, bake_settings, cut_method, from_panel
 from .world_image import WorldRender
 
 TRADEOFF_COUNTS = [4, 8, 16, 32, 64, 128, 256]
@@ -26,10 +27,7 @@ class PROBE_LIGHTS_OT_bake(bpy.types.Operator):
 
     def invoke(self, context, event):
         # From a button: start from the panel's settings, except what the caller set explicitly.
-        settings = context.scene.probe_lights
-        for name in SETTING_NAMES:
-            if not self.properties.is_property_set(name):
-                setattr(self, name, getattr(settings, name))
+        from_panel(self, context.scene.probe_lights)
         world = context.scene.world
         if world is None or context.window is None or not needs_render(world):
             return self.execute(context)
@@ -99,7 +97,7 @@ class PROBE_LIGHTS_OT_bake(bpy.types.Operator):
         return {"FINISHED"}
 
 
-class PROBE_LIGHTS_OT_tradeoff(bpy.types.Operator):
+class PROBE_LIGHTS_OT_tradeoff(ModalSteps, bpy.types.Operator):
     """Measure what accuracy costs: bake the world with 4 to 256 lights (with and without the refit) and show each
     count's time for a whole click and estimated diffuse and shadow error; nothing in the scene changes. Esc stops"""
 
@@ -156,27 +154,10 @@ class PROBE_LIGHTS_OT_tradeoff(bpy.types.Operator):
         except ProbeError as e:
             self.report({"ERROR"}, str(e))
             return {"CANCELLED"}
-        wm = context.window_manager
-        self._timer = wm.event_timer_add(0.01, window=context.window)
-        wm.progress_begin(0, len(TRADEOFF_COUNTS))
-        wm.modal_handler_add(self)
-        self._status(context)
-        return {"RUNNING_MODAL"}
+        return self._start_steps(context, len(TRADEOFF_COUNTS))
 
-    def _status(self, context, text=None):
-        if context.workspace is not None:
-            context.workspace.status_text_set(text if text is not None else
-                                              "Measuring tradeoff: %d of %d light counts done (Esc stops)" % (
-                                                  self._done, len(TRADEOFF_COUNTS)))
-
-    def _end(self, context):
-        wm = context.window_manager
-        wm.event_timer_remove(self._timer)
-        wm.progress_end()
-        if context.workspace is not None:
-            context.workspace.status_text_set(None)
-        for area in context.screen.areas if context.screen else ():
-            area.tag_redraw()
+    def _status_text(self):
+        return "Measuring tradeoff: %d of %d light counts done (Esc stops)" % (self._done, len(TRADEOFF_COUNTS))
 
     def modal(self, context, event):
         if event.type == "ESC":
@@ -191,8 +172,7 @@ class PROBE_LIGHTS_OT_tradeoff(bpy.types.Operator):
             self._end(context)
             self.report({"ERROR"}, str(e))
             return {"CANCELLED"}
-        context.window_manager.progress_update(self._done)
-        self._status(context)
+        self._show_progress(context, self._done)
         if done:
             self._end(context)
             self._finish(context)

@@ -67,6 +67,13 @@ def bake_settings():
 SETTING_NAMES = tuple(bake_settings())
 
 
+def from_panel(operator, settings):
+    """An operator started from a button takes the panel's settings, except those its caller set explicitly."""
+    for name in SETTING_NAMES:
+        if not operator.properties.is_property_set(name):
+            setattr(operator, name, getattr(settings, name))
+
+
 def cut_method(method):
     """The core's method for a panel's method: auto and both cut with variance minimization first."""
     return "variance" if method in ("auto", "both") else method

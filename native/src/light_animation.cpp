@@ -15,14 +15,27 @@ namespace probelights {
 
 using namespace exporttext;
 
-std::string usdAnimation(const std::vector<std::pair<int, std::vector<Light>>>& frames,
-                         const ExportOptions& options, const std::string& generator, double framesPerSecond) {
-  if (frames.empty()) throw Error("an animated USD layer needs at least one frame");
+namespace {
+
+// The lights each frame holds, after the checks both animations make: a frame at least, every frame as many
+// lights as the first, frames per second above 0.
+std::size_t lightsPerFrame(const std::vector<std::pair<int, std::vector<Light>>>& frames, const char* what,
+                           double framesPerSecond) {
+  if (frames.empty()) throw Error(std::string("an animated ") + what + " needs at least one frame");
   const std::size_t n = frames.front().second.size();
   for (const auto& [frame, lights] : frames)
-    if (lights.size() != n) throw Error("every frame of an animated USD layer has the same lights");
+    if (lights.size() != n)
+      throw Error(std::string("every frame of an animated ") + what + " has the same lights");
   if (!(framesPerSecond > 0 && std::isfinite(framesPerSecond)))
     throw Error("frames per second must be above 0");
+  return n;
+}
+
+}  // namespace
+
+std::string usdAnimation(const std::vector<std::pair<int, std::vector<Light>>>& frames,
+                         const ExportOptions& options, const std::string& generator, double framesPerSecond) {
+  const std::size_t n = lightsPerFrame(frames, "USD layer", framesPerSecond);
   const bool sun = options.kind == ExportKind::Sun;
   const double d = options.distance;
   constexpr double kSunDiameter = 0.53 * kPi / 180;  // as usdDocument draws a point light's radius
@@ -137,12 +150,7 @@ struct GltfBuffer {
 std::string gltfAnimation(const std::vector<std::pair<int, std::vector<Light>>>& frames,
                           const ExportOptions& options, const std::string& generator,
                           double framesPerSecond) {
-  if (frames.empty()) throw Error("an animated glTF needs at least one frame");
-  const std::size_t n = frames.front().second.size();
-  for (const auto& [frame, lights] : frames)
-    if (lights.size() != n) throw Error("every frame of an animated glTF has the same lights");
-  if (!(framesPerSecond > 0 && std::isfinite(framesPerSecond)))
-    throw Error("frames per second must be above 0");
+  const std::size_t n = lightsPerFrame(frames, "glTF", framesPerSecond);
   std::string document = gltfDocument(frames.front().second, options, generator);
   if (n == 0) return document;
   const bool sun = options.kind == ExportKind::Sun;

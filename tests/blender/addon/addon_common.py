@@ -65,16 +65,17 @@ def brightest(lights):
     return max(lights, key=lambda o: irradiance(o) @ LUM)
 
 
-def expect_report(text):
-    """The bake fails with one ERROR report containing `text` (from Python an operator's error report is raised)."""
+def expect_report(text, operator=None, **settings):
+    """The bake (or `operator`, with `settings`) fails with one ERROR report containing `text` (from Python an
+    operator's error report is raised)."""
     try:
-        bpy.ops.probe_lights.bake("EXEC_DEFAULT")
+        (operator or bpy.ops.probe_lights.bake)("EXEC_DEFAULT", **settings)
     except RuntimeError as e:
         message = str(e).strip()
         assert text in message and "\n" not in message, message
         print("  report: " + message)
         return
-    raise AssertionError("the bake did not fail")
+    raise AssertionError("the operator did not fail")
 
 
 def lamp_state(world):
