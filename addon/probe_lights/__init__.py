@@ -2,10 +2,10 @@
 
 Layout (glTF-Blender-IO style): rules that need no bpy (core_tables.py: the core's menus; blender_caps.py: what
 each Blender does; world_graph.py, conversion.py, light_kinds.py, render_cost.py, text_fit.py) apart from Blender
-glue (world_image.py, world_mix.py, light_objects.py, cycles_settings.py, eevee_settings.py, probe_volumes.py), what
-a click does (bake.py; animation.py for a world that changes over time, its lamps' keys in lamp_keys.py), and the
-thin shells the user touches (operators.py, animation_operator.py, properties.py, ui.py). The sampling
-itself is the native module _probelights, built into this package and imported on first use (native.py).
+glue (world_image.py, world_mix.py, light_objects.py and its lamps' drivers in lamp_drivers.py, cycles_settings.py,
+eevee_settings.py, probe_volumes.py), what a click does (bake.py; animation.py for a world that changes over time,
+its lamps' keys in lamp_keys.py), and the thin shells the user touches (operators.py, animation_operator.py,
+properties.py, ui.py). The sampling itself is the native module _probelights, built into this package and imported on first use (native.py).
 """
 
 bl_info = {

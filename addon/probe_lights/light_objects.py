@@ -15,8 +15,9 @@ import numpy as np
 from mathutils import Matrix, Vector
 
 from . import light_kinds, world_mix
-from .lamp_keys import actions_of, drop_keyframes
 from .blender_caps import is_eevee
+from .lamp_drivers import LAMP_RAYS, drive, engine_drivers_work, route_by_engine, routed_by_engine
+from .lamp_keys import actions_of, drop_keyframes
 from .conversion import point_parameters, sun_parameters
 
 COLLECTION_TAG = "probe_lights_collection"
@@ -28,7 +29,6 @@ COLLECTION_NAME = "Probe Lights: %s"
 SUN_SCALE = 0.1  # a sun's object scale: its light does not change, its viewport line is a tenth as long
 NOT_SCENERY = {"LIGHT", "CAMERA", "EMPTY", "SPEAKER", "LIGHT_PROBE", "LIGHTPROBE"}
 RAYS_KEY = "probe_lights_rays"  # on a lamp: the rays it lights in Cycles, its bake's split ("diffuse,volume_scatter")
-LAMP_RAYS = ("diffuse", "glossy", "transmission", "volume_scatter")
 
 
 def world_collection(world):
@@ -162,38 +162,6 @@ def add_to_lamps(scene, obj, tag):
     _collection(scene, scene.world).objects.link(obj)
 
 
-def _driver_target(socket):
-    """(id_type, id, data path) of a node socket's default_value, for a driver variable."""
-    tree = socket.id_data
-    path = socket.path_from_id("default_value")
-    for world in bpy.data.worlds:
-        if world.node_tree == tree:
-            return "WORLD", world, "node_tree." + path
-    return "NODETREE", tree, path
-
-
-def _drive(owner, path, index, expression, name, socket, socket_index=None):
-    """owner.path[index] = expression of the variable `name`, read from a node socket's value."""
-    id_type, id_, data_path = _driver_target(socket)
-    _drive_by(owner, path, index, expression, name,
-              (id_type, id_, data_path + ("[%d]" % socket_index if socket_index is not None else "")))
-
-
-def _drive_by(owner, path, index, expression, name, target):
-    """owner.path[index] = expression of the variable `name`, read from `target` (id_type, id, data path)."""
-    fcurve = owner.driver_add(path, index) if index is not None else owner.driver_add(path)
-    for m in list(fcurve.modifiers):
-        fcurve.modifiers.remove(m)
-    driver = fcurve.driver
-    driver.type = "SCRIPTED"
-    while len(driver.variables) > 1:  # a lamp's strength keyed by Bake animation read a second one
-        driver.variables.remove(driver.variables[-1])
-    var = driver.variables[0] if len(driver.variables) else driver.variables.new()
-    var.name, var.type = name, "SINGLE_PROP"
-    var.targets[0].id_type, var.targets[0].id, var.targets[0].data_path = target
-    driver.expression = expression  # a simple expression: evaluated without Python, also with auto-run off
-
-
 def make_lights(scene, world, baked, source, light_type=light_kinds.DEFAULT, distance=light_kinds.DEFAULT_DISTANCE,
                 lights_diffuse=True, lights_glossy=False):
     """Creates one lamp per baked light under `world`'s rig. `baked` is the module's result (directions in the
@@ -252,7 +220,7 @@ def make_lights(scene, world, baked, source, light_type=light_kinds.DEFAULT, dis
             obj.matrix_basis = Matrix.Translation(p["location"])
         data.color = p["color"]
         if follow_strength:
-            _drive(data, "energy", None, "%.9g*s" % p["energy"], "s", source.strength_socket)
+            drive(data, "energy", None, "%.9g*s" % p["energy"], "s", source.strength_socket)
         else:
             data.driver_remove("energy")
             data.energy = p["energy"] * strength
@@ -267,7 +235,7 @@ def make_lights(scene, world, baked, source, light_type=light_kinds.DEFAULT, dis
         rays = [r for r, lit in zip(LAMP_RAYS, (lights_diffuse, lights_glossy, lights_glossy, lights_diffuse)) if lit]
         obj[RAYS_KEY] = ",".join(rays)
         _show_to(obj, LAMP_RAYS if is_eevee(scene.render.engine) else rays)
-        _route_by_engine(obj, rays if by_drivers else LAMP_RAYS, scene)  # else the handler routes it
+        route_by_engine(obj, rays if by_drivers else LAMP_RAYS, scene)  # else the handler routes it
         # Multiple importance sampling only when the lamps light reflections, in a Cycles with a light tree. With MIS
         # a lamp's light on a many-closure BSDF (Principled) is shared between the lamp's own samples, which Cycles
         # evaluates closure by closure against the lamp's visibility (the glossy closures left out), and rays
@@ -315,7 +283,7 @@ def _rig(collection, world, source, centre, radius):
         holder.rotation_mode = "ZYX" if source.rotation_inverted else "XYZ"
         sign = "-" if source.rotation_inverted else ""
         for i in range(3):
-            _drive(holder, "rotation_euler", i, sign + "r", "r", source.rotation_socket, i)
+            drive(holder, "rotation_euler", i, sign + "r", "r", source.rotation_socket, i)
     else:
         holder.rotation_mode = "QUATERNION"
         holder.rotation_quaternion = Matrix(np.asarray(source.world_from_probe, float).tolist()).to_quaternion()
@@ -352,49 +320,19 @@ def _shown_to(obj):
     return {ray for ray in LAMP_RAYS if getattr(obj, "visible_" + ray)}
 
 
-# A driver's variable reads an enum property as its value: render.engine's is the engine's place among the
-# registered engines, and Blender registers EEVEE first (0), Workbench next, add-ons' engines (Cycles) after; measured
-# in 3.4.1, 4.2.23, 4.5.15 and 5.3.0. A simple expression: evaluated without Python, so also with auto-run off.
-ENGINE_EXPRESSION = "engine == 0"
-
-
-def engine_drivers_work(scene):
-    """Whether this Blender numbers its engines as ENGINE_EXPRESSION expects (EEVEE first)."""
-    items = scene.render.bl_rna.properties["engine"].enum_items
-    return any(item.value == 0 and is_eevee(item.identifier) for item in items)
-
-
-def _route_by_engine(obj, split, scene):
-    """The lamp lights every ray in EEVEE and its Cycles split elsewhere, by drivers on the rays outside the split:
-    the file renders right in either engine on a machine without the add-on (a render farm worker runs no handler;
-    `blender -b file.blend -E BLENDER_EEVEE_NEXT -f 1`). The rays of the split carry no driver: the user may turn
-    them off."""
-    for ray in LAMP_RAYS:
-        path = "visible_" + ray
-        if ray in split:
-            obj.driver_remove(path)
-        else:
-            _drive_by(obj, path, None, ENGINE_EXPRESSION, "engine", ("SCENE", scene, "render.engine"))
-
-
-def _routed_by_engine(obj):
-    ad = obj.animation_data
-    return ad is not None and any(d.data_path.startswith("visible_") for d in ad.drivers)
-
-
 def follow_engine(scene):
     """The lamps' ray visibility follows the render engine. Cycles keeps the world for the effects the bake's split
     left to it (reflections by default) and the lamps light the others, routed by ray visibility. EEVEE shows the
     world to the camera only (world_mix.py), so there the lamps light every effect: EEVEE 4.2 and newer honours a
     lamp's ray visibility (a Glossy BSDF ball lit by 16 lamps of the default split rendered black; bpy 4.5.15 and
     5.3.0), EEVEE Legacy does not. A lamp whose visibility is neither of the two (the user's own) is left as it
-    is. Lamps baked since 2026-12-06 follow it by drivers (_route_by_engine), which need no add-on; this keeps
-    earlier bakes' lamps following it. Returns how many lamps changed."""
+    is. Lamps baked since 2026-12-06 follow it by drivers (lamp_drivers.route_by_engine), which need no add-on;
+    this keeps earlier bakes' lamps following it. Returns how many lamps changed."""
     eevee = is_eevee(scene.render.engine)
     changed = 0
     lamps = (o for c in scene.collection.children if c.get(COLLECTION_TAG) for o in c.objects)
     for obj in lamps:  # the baked collections only: this runs after every depsgraph update
-        if obj.type != "LIGHT" or not obj.get(OBJECT_TAG) or _routed_by_engine(obj):
+        if obj.type != "LIGHT" or not obj.get(OBJECT_TAG) or routed_by_engine(obj):
             continue
         if RAYS_KEY not in obj:  # baked before 2026-12-05 (in Cycles' split, factors 0): adopted once
             obj[RAYS_KEY] = ",".join(sorted(_shown_to(obj)))
