@@ -2,7 +2,10 @@
 rendered lit by the world (A), after a bake of 64 suns with the add-on's world mix (B), and with the same suns and
 the world's strength at 0 (C). The world must add nothing to the lit objects (B = C there), the camera must still
 see the probe (B = A in the background), and the suns must light the objects like the world did (B near A).
-EEVEE's 8 anti-aliasing samples (its default is 64) are enough for these checks: B and C are sampled alike."""
+EEVEE's 2 anti-aliasing samples (its default is 64) are enough for these checks: B and C are sampled alike. A sample
+of 64 suns takes about a second in software OpenGL: at 2 samples, against 8, every figure the tests print moved by
+under 0.002 (bpy 4.5.15: world light added 0.18 % against 0.33 %, the glossy sphere 0.914
+against 0.913) and the file took 256 s against 309."""
 
 import os
 import sys
@@ -18,7 +21,7 @@ import render_scene  # noqa: E402
 ARGS = harness.args()
 harness.install_addon(ARGS.zip)
 LUM = render_scene.LUM
-TAA_SAMPLES = 8
+TAA_SAMPLES = 2
 
 
 def test_world_mix_in_eevee():

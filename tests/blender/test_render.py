@@ -71,6 +71,10 @@ def test_baked_lights_render_like_the_world():
               harness.shared_probe(ARGS, "studio_small_05_1k.hdr",                # large softboxes
                                    os.path.join(harness.studiolights(ARGS), "studio.exr")),
               os.path.join(harness.studiolights(ARGS), "forest.exr")]             # dappled, Blender's own
+    # PROBELIGHTS_RENDER_PROBES=bundled: the bundled probe alone (the Windows bpy under Wine, tests/CMakeLists.txt:
+    # the Windows core's lights rendered by the Windows Cycles; the three probes are Linux's in the same version).
+    if os.environ.get("PROBELIGHTS_RENDER_PROBES") == "bundled":
+        probes = probes[:1]
     worst = 0.0
     for probe in probes:
         results = compare(probe, [16, 64])
