@@ -288,6 +288,7 @@ class PROBE_LIGHTS_OT_bake_light_probes(bpy.types.Operator):
                 probe_volumes.remove_fitted(fitted)
             self.report({"ERROR"}, "Light probe bake failed: %s" % str(e).strip().splitlines()[-1])
             return {"CANCELLED"}
+        probe_volumes.remember(scene)
         merged = " (as %d for their shadows in the bake)" % seen if seen < suns else ""
         added = "Added a light probe volume around the scene and baked it" if fitted else (
             "Baked %d light probe volumes" % len(probe_volumes.volume_probes(scene)))

@@ -14,13 +14,14 @@ merged suns bounce nearly the same light (docs/results/eevee.md measures it). Th
 they were when the bake ends, whether it succeeded or not.
 """
 
+import hashlib
 import math
 
 import bpy
 
 from . import eevee_settings
 from .bake import LUM
-from .light_objects import VOLUME_TAG, add_to_lamps, baked_lights, scene_box, sun_direction
+from .light_objects import NOT_SCENERY, VOLUME_TAG, add_to_lamps, baked_lights, scene_box, sun_direction
 from .world_mix import has_residual
 
 # Shadow pages one sun takes in a volume probe bake, at any shadow resolution scale: the most measured over plane
@@ -96,6 +97,51 @@ def offer(scene):
     if not eevee_settings.eevee_next(scene) or volume_probes(scene) or len(_suns(scene)) == 0:
         return ""
     return "EEVEE bounces no light without a light probe volume: add one around the scene, baked with the lamps"
+
+
+# On the scene, after the add-on's bake of the probes: what the bake saw, the lamps' and the scene's part apart.
+BAKED_KEY = "probe_lights_probes_baked"
+
+
+def _digest(items):
+    return hashlib.sha1(repr(items).encode()).hexdigest()[:16]
+
+
+def _placed(obj):
+    return tuple(round(x, 5) for row in obj.matrix_world for x in row)
+
+
+def _seen(scene):
+    """(the lamps, the rest of the scene) as a volume probe bake sees them: each lit lamp's place, colour, strength
+    and size; each rendered object's place and data, each volume probe's place and cells. Materials are not read."""
+    lamps = [(o.name, _placed(o), tuple(round(c, 5) for c in o.data.color), round(o.data.energy, 5),
+              round(getattr(o.data, "angle", 0.0), 5), round(getattr(o.data, "shadow_soft_size", 0.0), 5))
+             for o in baked_lights(scene.world) if o.type == "LIGHT" and not o.hide_render]
+    scenery = [(o.name, _placed(o), o.data.name if o.data else "",
+                tuple(getattr(o.data, "resolution_" + a, 0) for a in "xyz") if o.type == "LIGHT_PROBE" else ())
+               for o in scene.objects if not o.hide_render and (o.type == "LIGHT_PROBE" or o.type not in NOT_SCENERY)]
+    return _digest(sorted(lamps)), _digest(sorted(scenery))
+
+
+def remember(scene):
+    """Called after the add-on's bake of the probes: what it baked, for stale()."""
+    scene[BAKED_KEY] = ",".join(_seen(scene))
+
+
+def stale(scene):
+    """One line when the lamps or the objects changed since the add-on's last bake of the probes (a new bake of the
+    lamps, the world's strength, a moved object), or ''. Blender's own bake button is not seen: the line says
+    what changed since the add-on's bake, and shows in Blender's bake panels too."""
+    baked = str(scene.get(BAKED_KEY, ""))
+    if not baked or not eevee_settings.eevee_next(scene) or not volume_probes(scene):
+        return ""
+    lamps, scenery = baked.split(",") if "," in baked else (baked, "")
+    now_lamps, now_scenery = _seen(scene)
+    if lamps != now_lamps:
+        return "The lamps changed since the light probes were baked here: bake them again for their bounce light"
+    if scenery != now_scenery:
+        return "The objects changed since the light probes were baked here: bake them again"
+    return ""
 
 
 def _luminance(lamp):

@@ -136,19 +136,23 @@ def _draw_results(layout, context, width, measure):
 
 
 def _draw_probe_bake(layout, scene, width, measure):
-    """What EEVEE's light probe bake lacks for the baked suns, with the bake that makes room; or, with no volume
-    probe, the offer of one fitted around the scene."""
-    advice = probe_volumes.advice(scene)
-    note = advice or probe_volumes.offer(scene)
-    if note:
+    """What EEVEE's light probe bake lacks for the baked suns, with the bake that makes room; that the probes were
+    baked with other lamps or objects, with the bake again; or, with no volume probe, the offer of one fitted around
+    the scene."""
+    notes = [(note, icon) for note, icon in ((probe_volumes.stale(scene), "INFO"),
+                                             (probe_volumes.advice(scene), "ERROR"),
+                                             (probe_volumes.offer(scene), "INFO")) if note]
+    if notes:
         box = layout.box()
-        _lines(box.column(align=True), note, width - 16, measure, icon="ERROR" if advice else "INFO")
+        column = box.column(align=True)
+        for note, icon in notes:
+            _lines(column, note, width - 16, measure, icon=icon)
         box.operator("probe_lights.bake_light_probes", icon="LIGHTPROBE_VOLUME")
 
 
 def _draw_in_blenders_bake(self, context):
     """Appended to Blender's own light probe bake panels: the same note and button, where the user bakes."""
-    if context.scene is not None and probe_volumes.advice(context.scene):
+    if context.scene is not None and (probe_volumes.advice(context.scene) or probe_volumes.stale(context.scene)):
         region = context.region
         width = 0.95 * ((region.width if region else 300) - 58 * context.preferences.system.ui_scale)
         _draw_probe_bake(self.layout, context.scene, width, _font_measure())

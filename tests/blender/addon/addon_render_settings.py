@@ -77,3 +77,39 @@ def test_eevee_shadow_pool_follows_the_scene_and_restore():
     assert shadows._pages(2140, 0.75) == 2354
     scene.eevee.shadow_resolution_scale = 1.0
     scene.render.engine = "CYCLES"
+
+
+def test_light_probes_baked_here_are_flagged_when_the_lamps_or_objects_change():
+    """After the add-on's bake of EEVEE's light probes (stood in for by what it records after a bake: EEVEE's own
+    bake needs OpenGL, test_probe_bake.py bakes for real), the panel says in one line when they no longer hold the
+    scene's bounce light, and offers the bake again: the lamps baked again, the world's strength changed (the
+    lamps follow it), an object moved. Not before the add-on's first bake, not outside EEVEE."""
+    harness.empty_scene()
+    scene = bpy.context.scene
+    world = harness.env_world(bpy.data.images.load(harness.BUNDLED_PROBE))
+    bpy.ops.mesh.primitive_cube_add()
+    cube = bpy.context.object
+    volumes = harness.addon_module("probe_volumes")
+    bake(count=8)
+    if bpy.app.version < (4, 2, 0):
+        assert volumes.stale(scene) == ""
+        print("  skipped: EEVEE Legacy (Blender %s) bakes no light probe volumes this way" % bpy.app.version_string)
+        return
+    scene.render.engine = harness.eevee_engine()
+    bpy.ops.object.lightprobe_add(type="VOLUME")
+    assert volumes.stale(scene) == ""  # never baked here: Blender's own bake may have been used
+    volumes.remember(scene)
+    assert volumes.stale(scene) == ""
+    bake(count=4)
+    assert volumes.stale(scene).startswith("The lamps changed since the light probes were baked here")
+    volumes.remember(scene)
+    world.node_tree.nodes["Background"].inputs["Strength"].default_value = 2.0
+    bpy.context.view_layer.update()  # the lamps' strength drivers
+    assert volumes.stale(scene).startswith("The lamps changed"), volumes.stale(scene)
+    volumes.remember(scene)
+    cube.location.x += 0.5
+    bpy.context.view_layer.update()
+    assert volumes.stale(scene).startswith("The objects changed"), volumes.stale(scene)
+    scene.render.engine = "CYCLES"
+    assert volumes.stale(scene) == ""  # Cycles bakes no light probes
+    assert bpy.ops.probe_lights.restore() == {"FINISHED"}
