@@ -12,7 +12,6 @@ same way here, so only the probe's pixels are baked per frame.
 """
 
 import math
-import os
 import time
 
 import bpy
@@ -26,8 +25,8 @@ from .errors import ProbeError
 from .lamp_keys import ENERGY_KEY, drive_energy_by_key
 from .light_objects import make_lights
 from .properties import NATIVE_SUN_ANGLES, cut_method
-from .world_graph import ProbeSource, find_probe, sequence_number, sequence_path
-from .world_image import WorldRender, image_pixels
+from .world_graph import ProbeSource, find_probe
+from .world_image import WorldRender, sequence_pixels
 
 # Lat-long width an animated world without an image sequence is rendered at, a frame: a single bake's
 # (bake.RENDER_WIDTH). At 512 a Sky Texture's sun is a pixel or two, and its fitted angle and the renders of a
@@ -67,24 +66,6 @@ def _followed(source):
     """The paths the lamps of a single bake follow by drivers (the Background strength, one Mapping rotation)."""
     return {s.path_from_id("default_value") for s in (source.strength_socket, source.rotation_socket)
             if s is not None}
-
-
-def sequence_pixels(node, frame):
-    """The pixels an Environment Texture whose image is a sequence shows at scene frame `frame`: its file for that
-    frame (world_graph.sequence_number, sequence_path), read through Blender in the sequence's colour space."""
-    image, user = node.image, node.image_user
-    number = sequence_number(frame, user.frame_start, user.frame_duration, user.frame_offset, user.use_cyclic)
-    path = sequence_path(bpy.path.abspath(image.filepath, library=image.library), number or 0)
-    if number is None or path is None:
-        raise ProbeError("image sequence '%s' has no frames (set Frames on its Environment Texture)" % image.name)
-    if not os.path.isfile(path):
-        raise ProbeError("frame %d: image sequence '%s' has no file %s" % (frame, image.name, path))
-    frame_image = bpy.data.images.load(path, check_existing=False)
-    try:
-        frame_image.colorspace_settings.name = image.colorspace_settings.name
-        return np.array(image_pixels(frame_image))
-    finally:
-        bpy.data.images.remove(frame_image)
 
 
 class FrameSource:

@@ -14,14 +14,13 @@ import bpy
 import numpy as np
 
 from . import cycles_settings, eevee_settings, light_kinds, native, render_cost
-from .animation import sequence_pixels
 from .blender_caps import preset, sun_cones, sun_profile
 from .errors import ProbeError
 from .light_objects import (baked_worlds, make_lights, remove_collection_if_empty, remove_lights, sun_height,
                             world_collection)
 from .properties import NATIVE_SUN_ANGLES, cut_method, cuts
 from .world_graph import find_probe
-from .world_image import image_pixels, render_world
+from .world_image import image_pixels, render_world, sequence_pixels
 from .world_mix import insert_mix, remove_mix, residual_world
 
 RENDER_WIDTH = 1024  # lat-long width a world without a readable image is rendered at

@@ -11,6 +11,7 @@ import numpy as np
 from . import native
 from .conversion import srgb_to_linear
 from .errors import ProbeError
+from .world_graph import sequence_number, sequence_path
 
 LINEAR_SPACES = {"Linear", "Linear Rec.709", "Non-Color", "Raw", "Linear CIE-XYZ E"}
 GIL_HOLD_SECONDS = 1.0  # Python's thread switch interval while the world's render job runs (WorldRender.start)
@@ -225,3 +226,21 @@ def render_world(world, width=1024, samples=16):
         return job.render()
     finally:
         job.close()
+
+
+def sequence_pixels(node, frame):
+    """The pixels an Environment Texture whose image is a sequence shows at scene frame `frame`: its file for that
+    frame (world_graph.sequence_number, sequence_path), read through Blender in the sequence's colour space."""
+    image, user = node.image, node.image_user
+    number = sequence_number(frame, user.frame_start, user.frame_duration, user.frame_offset, user.use_cyclic)
+    path = sequence_path(bpy.path.abspath(image.filepath, library=image.library), number or 0)
+    if number is None or path is None:
+        raise ProbeError("image sequence '%s' has no frames (set Frames on its Environment Texture)" % image.name)
+    if not os.path.isfile(path):
+        raise ProbeError("frame %d: image sequence '%s' has no file %s" % (frame, image.name, path))
+    frame_image = bpy.data.images.load(path, check_existing=False)
+    try:
+        frame_image.colorspace_settings.name = image.colorspace_settings.name
+        return np.array(image_pixels(frame_image))
+    finally:
+        bpy.data.images.remove(frame_image)

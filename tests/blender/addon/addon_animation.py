@@ -91,7 +91,8 @@ def test_an_image_sequence_bakes_into_keyed_lamps_that_keep_their_ids():
             lamps = _bake_animation(count=6, refit=refit)
             # The core's sequence bake of the same frames with the add-on's options, read as Blender reads them.
             baker = _probelights.SequenceBaker(**animation.sequence_options(scene, scene.probe_lights, 0.1))
-            frames = [baker.add(animation.sequence_pixels(node, f), frame=f) for f in range(1, FRAMES + 1)]
+            read = harness.addon_module("world_image").sequence_pixels
+            frames = [baker.add(read(node, f), frame=f) for f in range(1, FRAMES + 1)]
             assert len(lamps) == 6
             for lamp in lamps:  # every lamp keyed on every frame
                 fcurves = animation._fcurves(lamp.animation_data)
@@ -137,16 +138,16 @@ def test_a_bake_of_an_image_sequence_reads_the_scenes_frame_and_restore_takes_th
 def test_sequence_frames_are_the_ones_cycles_renders():
     """The image of each scene frame (start frame, offset, cyclic) is the one Cycles renders at that frame."""
     harness.empty_scene()
-    animation = harness.addon_module("animation")
+    world_image = harness.addon_module("world_image")
     with tempfile.TemporaryDirectory() as folder:
         _write_sequence(folder)
         for start, offset, cyclic, frames in ((3, 1, True, (2, 15, 30)), (1, 0, False, (2, 30))):
             world, node = _sequence_world(folder, start=start, offset=offset, cyclic=cyclic)
             node.image_user.frame_duration = FRAMES - 2
-            render = harness.addon_module("world_image").WorldRender(world, W, samples=4)
+            render = world_image.WorldRender(world, W, samples=4)
             try:
                 for frame in frames:
-                    read = animation.sequence_pixels(node, frame)
+                    read = world_image.sequence_pixels(node, frame)
                     rendered = render.render(frame)
                     at = [np.unravel_index(np.argmax(p[..., 1]), p.shape[:2]) for p in (read, rendered)]
                     assert at[0] == at[1], (start, offset, cyclic, frame, at)
