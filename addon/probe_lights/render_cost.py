@@ -1,4 +1,5 @@
-"""What more lights cost in a Cycles render, per Blender version, as measured (no bpy): the advice a bake gives.
+"""What more lights cost in a Cycles render, per Blender version, as measured (no bpy): the advice a bake gives, and
+the render time the Tradeoff shows per count.
 
 bench/bench_render_counts.py renders the sphere-over-plane scene lit by the world and by N suns baked with the
 add-on's defaults and writes render_cost.json: render seconds and the difference to the world-lit render, on three
@@ -73,3 +74,19 @@ def count_note(count, blender_version):
     # Without a light tree (3.x) more lamps make a render noisier; with one (4.0+) slower.
     cost = "slower" if has_light_tree(version) else "noisier"
     return "More than %d suns: %s renders, no closer in Cycles %d.%d" % (best, cost, version[0], version[1])
+
+
+def render_factor(count, blender_version):
+    """The measured Cycles render time of `count` suns as a multiple of the world-lit render's, the mean over the
+    measured probes (straight between measured counts), in the measurements standing for `blender_version`; None
+    outside the measured counts. The Tradeoff shows it beside each count's error."""
+    factors = []
+    for world_seconds, suns in MEASURED[measured_version(blender_version)].values():
+        counts = sorted(suns)
+        if not counts[0] <= count <= counts[-1]:
+            return None
+        lo = max(n for n in counts if n <= count)
+        hi = min(n for n in counts if n >= count)
+        seconds = suns[lo][0] if hi == lo else suns[lo][0] + (suns[hi][0] - suns[lo][0]) * (count - lo) / (hi - lo)
+        factors.append(seconds / world_seconds)
+    return sum(factors) / len(factors)

@@ -3,7 +3,7 @@ widths: short labels, enums as buttons, and every long line (results, notes, war
 
 import bpy
 
-from . import cycles_settings, eevee_settings, light_kinds, native, probe_volumes
+from . import cycles_settings, eevee_settings, light_kinds, native, probe_volumes, render_cost
 from .bake import eevee_cones_note, image_changed
 from .light_objects import baked_worlds, world_collection
 from .text_fit import fits, wrap
@@ -90,7 +90,7 @@ def draw_panel(layout, context):
 
     _draw_results(layout, context, width, measure)
     if len(settings.tradeoff):
-        draw_tradeoff(layout, settings, width, measure)
+        draw_tradeoff(layout, scene, width, measure)
     _draw_baked_worlds(layout, scene)
 
 
@@ -199,20 +199,39 @@ def _click_time(ms):
     return "%.0f" % ms if ms < 9999.5 else "%.0fs" % (ms / 1000)
 
 
-def draw_tradeoff(layout, settings, width, measure):
-    """What accuracy costs, per light count: a whole click's time and the estimated errors (refit rows when the
-    panel's Refit is on); a count's button uses it."""
+def draw_tradeoff(layout, scene, width, measure):
+    """What accuracy costs, per light count: a whole click's time, in Cycles the render's time as a multiple of the
+    world-lit render's (render_cost.json, measured in this version or the nearest; where the panel is too narrow
+    for five columns, as the sidebar at its default width, not shown), and the estimated errors (refit rows when
+    the panel's Refit is on); a count's button uses it."""
+    settings = scene.probe_lights
+    rows = sorted((r for r in settings.tradeoff if r.refit == settings.refit), key=lambda r: r.lights)
+    table = [[str(r.lights), _click_time(r.click_ms), _percent(r.diffuse), _percent(r.shadow)] for r in rows]
+    header = ""
+    if scene.render.engine == "CYCLES":
+        with_render = [t[:2] + [_times(render_cost.render_factor(r.lights, bpy.app.version))] + t[2:]
+                       for r, t in zip(rows, table)]
+        if all(fits(text, width / 5 - 6, measure) for t in with_render for text in t[1:]):
+            table = with_render
+            header = ", Cycles render time x the world's (%d.%d)" % render_cost.measured_version(bpy.app.version)[:2]
     box = layout.box()
     col = box.column(align=True)
-    _lines(col, "Tradeoff (%s%s): lights, ms per click (world, bake, lamps), estimated diffuse and shadow error %%" % (
-        settings.tradeoff_method, ", refit" if settings.refit else ""), width - 16, measure, icon="SORTTIME")
-    for r in sorted((r for r in settings.tradeoff if r.refit == settings.refit), key=lambda r: r.lights):
+    _lines(col, "Tradeoff (%s%s): lights, ms per click (world, bake, lamps)%s, estimated diffuse and shadow error %%" % (
+        settings.tradeoff_method, ", refit" if settings.refit else "", header), width - 16, measure, icon="SORTTIME")
+    for r, texts in zip(rows, table):
         row = box.row(align=True)
-        row.operator("probe_lights.set_count", text=str(r.lights)).count = r.lights
-        for text in (_click_time(r.click_ms), _percent(r.diffuse), _percent(r.shadow)):
-            if not fits(text, width / 4 - 6, measure):
+        row.operator("probe_lights.set_count", text=texts[0]).count = r.lights
+        for text in texts[1:]:
+            if not fits(text, width / len(texts) - 6, measure):
                 OVERFLOW.append(text)
             row.label(text=text)
+
+
+def _times(factor):
+    """A render time multiple at most four characters wide ("0.9x", "12x"), or "-" where none was measured."""
+    if factor is None:
+        return "-"
+    return "%.1fx" % factor if factor < 9.95 else "%.0fx" % factor
 
 
 class PROBE_LIGHTS_PT_world(bpy.types.Panel):

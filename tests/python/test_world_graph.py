@@ -272,3 +272,19 @@ def test_image_sequence_files_are_named_as_blender_names_them():
     assert wg.sequence_path("/a/sky_9.exr", 123) == "/a/sky_123.exr"  # more digits than the padding
     assert wg.sequence_path("/a/sky.0001.exr", -2) == "/a/sky.0000.exr"
     assert wg.sequence_path("/a/sky.exr", 3) is None
+
+
+def test_the_tradeoff_shows_the_measured_render_time_per_count():
+    """The Tradeoff's render column: a count's Cycles render time over the world-lit render's, the mean of the
+    probes measured in the version standing for the running one, straight between measured counts, none outside."""
+    import render_cost
+    measured = render_cost.MEASURED[(4, 5, 15)]
+    at_64 = sum(suns[64][0] / world for world, suns in measured.values()) / len(measured)
+    assert abs(render_cost.render_factor(64, (4, 5, 15)) - at_64) < 1e-12
+    assert abs(render_cost.render_factor(64, (4, 2, 0)) - at_64) < 1e-12  # 4.2 takes 4.5's measurements
+    at_32 = render_cost.render_factor(32, (4, 5, 15))
+    assert abs(render_cost.render_factor(48, (4, 5, 15)) - (at_32 + at_64) / 2) < 1e-12
+    assert render_cost.render_factor(2, (4, 5, 15)) is None and render_cost.render_factor(999, (4, 5, 15)) is None
+    for version in ((4, 5, 15), (5, 0, 1), (5, 2, 3), (5, 3, 0)):  # with a light tree every sun adds time
+        factors = [render_cost.render_factor(n, version) for n in (16, 32, 64, 128, 256)]
+        assert factors == sorted(factors) and factors[-1] > 4, (version, factors)

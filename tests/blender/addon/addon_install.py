@@ -59,7 +59,8 @@ def test_another_platforms_zip_is_refused_and_the_installed_one_kept():
 
 def test_panel_draws_at_default_width_in_this_blender():
     """The panel's drawing code in this Blender (fonts, preferences, operators it names), as the World properties
-    editor at its default width would call it, after a bake with warnings and a tradeoff: every line fits."""
+    editor at its default width would call it, after a bake with warnings and a tradeoff: every line fits. In Cycles
+    the Tradeoff's rows carry the measured render time, in EEVEE not."""
     harness.empty_scene()
     scene = bpy.context.scene
     harness.env_world(bpy.data.images.load(harness.BUNDLED_PROBE))
@@ -78,4 +79,14 @@ def test_panel_draws_at_default_width_in_this_blender():
         assert ("operator", "probe_lights.bake") in log and ("operator", "probe_lights.cycles_settings") in log
         assert any("Error: diffuse" in t for t in labels) and len(labels) > 20, labels
         assert not ui.OVERFLOW, (region_type, ui.OVERFLOW)
-    print("  panel drawn at 303 and 229 px: %d labels, none cut" % len(labels))
+        # In Cycles the Tradeoff shows each count's render time as measured (render_cost.json): 7 multiples in
+        # the Properties editor (the sidebar shows them where they fit).
+        multiples = [t for t in labels if t.endswith("x") and t[:-1].replace(".", "").isdigit()]
+        assert len(multiples) == 7 or region_type == "UI", labels
+    scene.render.engine = harness.eevee_engine()  # no render times measured in EEVEE: no column
+    log = []
+    ui.draw_panel(RecordingLayout(log), context)
+    assert not [t for kind, t in log if kind == "label" and t.endswith("x") and t[:-1].replace(".", "").isdigit()]
+    scene.render.engine = "CYCLES"
+    print("  panel drawn at 303 and 229 px: %d labels, none cut; Cycles render times %s" % (
+        len(labels), " ".join(multiples)))
