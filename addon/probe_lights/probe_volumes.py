@@ -21,7 +21,7 @@ import bpy
 
 from . import eevee_settings
 from .bake import LUM
-from .light_objects import NOT_SCENERY, VOLUME_TAG, add_to_lamps, baked_lights, scene_box, sun_direction
+from .light_objects import NOT_SCENERY, OBJECT_TAG, VOLUME_TAG, add_to_lamps, baked_lights, scene_box, sun_direction
 from .world_mix import has_residual
 
 # Shadow pages one sun takes in a volume probe bake, at any shadow resolution scale: the most measured over plane
@@ -112,11 +112,13 @@ def _placed(obj):
 
 
 def _seen(scene):
-    """(the lamps, the rest of the scene) as a volume probe bake sees them: each lit lamp's place, colour, strength
-    and size; each rendered object's place and data, each volume probe's place and cells. Materials are not read."""
+    """(the lamps, the rest of the scene) as a volume probe bake sees them: each lamp's place, colour, strength and
+    size (the baked world's and the user's own); each rendered object's place and data, each volume probe's place
+    and cells. Materials are not read."""
+    lights = baked_lights(scene.world) + [o for o in scene.objects if o.type == "LIGHT" and not o.get(OBJECT_TAG)]
     lamps = [(o.name, _placed(o), tuple(round(c, 5) for c in o.data.color), round(o.data.energy, 5),
               round(getattr(o.data, "angle", 0.0), 5), round(getattr(o.data, "shadow_soft_size", 0.0), 5))
-             for o in baked_lights(scene.world) if o.type == "LIGHT" and not o.hide_render]
+             for o in lights if o.type == "LIGHT" and not o.hide_render]
     scenery = [(o.name, _placed(o), o.data.name if o.data else "",
                 tuple(getattr(o.data, "resolution_" + a, 0) for a in "xyz") if o.type == "LIGHT_PROBE" else ())
                for o in scene.objects if not o.hide_render and (o.type == "LIGHT_PROBE" or o.type not in NOT_SCENERY)]

@@ -83,7 +83,7 @@ def test_light_probes_baked_here_are_flagged_when_the_lamps_or_objects_change():
     """After the add-on's bake of EEVEE's light probes (stood in for by what it records after a bake: EEVEE's own
     bake needs OpenGL, test_probe_bake.py bakes for real), the panel says in one line when they no longer hold the
     scene's bounce light, and offers the bake again: the lamps baked again, the world's strength changed (the
-    lamps follow it), an object moved. Not before the add-on's first bake, not outside EEVEE."""
+    lamps follow it), an object moved, a lamp of the user's added. Not before the add-on's first bake, not outside EEVEE."""
     harness.empty_scene()
     scene = bpy.context.scene
     world = harness.env_world(bpy.data.images.load(harness.BUNDLED_PROBE))
@@ -110,6 +110,10 @@ def test_light_probes_baked_here_are_flagged_when_the_lamps_or_objects_change():
     cube.location.x += 0.5
     bpy.context.view_layer.update()
     assert volumes.stale(scene).startswith("The objects changed"), volumes.stale(scene)
+    volumes.remember(scene)
+    own = bpy.data.objects.new("user's lamp", bpy.data.lights.new("user's lamp", "POINT"))
+    scene.collection.objects.link(own)  # the user's own lamp bounces light too
+    assert volumes.stale(scene).startswith("The lamps changed"), volumes.stale(scene)
     scene.render.engine = "CYCLES"
     assert volumes.stale(scene) == ""  # Cycles bakes no light probes
     assert bpy.ops.probe_lights.restore() == {"FINISHED"}
