@@ -1,7 +1,8 @@
 """Does the add-on's estimate predict the render? The evaluator's shadow scene (render_scene.ground_under_sphere: a
 plane under a unit sphere, direct light, the 16 x 16 ground points as pixels) rendered by Cycles lit by N baked
 suns (the default bake: fitted angles, the 512-wide estimate), on six probes that every machine has (the bundled
-one and five of Blender's studio lights) and N = 8, 16, 64, and compared with the probe's truth at those points
+one and five of Blender's studio lights; PROBELIGHTS_ESTIMATE_PROBES narrows them, tests/CMakeLists.txt) and
+N = 8, 16, 64, and compared with the probe's truth at those points
 (its pixels integrated; Cycles' render of the world is checked to be that truth on the bundled probe). The
 rendered relative RMS difference, less the renders' own noise (two seeds of each), must agree with the estimated
 shadow error within a third of the rendered figure or 0.3 points, whichever is larger (issue 9). The estimate
