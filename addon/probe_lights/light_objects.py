@@ -131,13 +131,17 @@ def _collection(scene, world):
     return c
 
 
+def scenery(scene, rendered_only=False):
+    """The scene's objects that light falls on (not lamps, cameras, empties or light probes; with `rendered_only`,
+    not those hidden from renders)."""
+    return [o for o in scene.objects
+            if not (o.type in NOT_SCENERY or o.get(OBJECT_TAG) or (rendered_only and o.hide_render))]
+
+
 def scene_box(scene, rendered_only=False):
-    """(lowest, highest corner) of the box around the scene's objects (not lamps, cameras or empties; with
-    `rendered_only`, not those hidden from renders), or None."""
+    """(lowest, highest corner) of the box around the scenery (`rendered_only` as scenery's), or None."""
     corners = []
-    for obj in scene.objects:
-        if obj.type in NOT_SCENERY or obj.get(OBJECT_TAG) or (rendered_only and obj.hide_render):
-            continue
+    for obj in scenery(scene, rendered_only):
         m = obj.matrix_world
         corners += [m @ Vector(tuple(v)) for v in obj.bound_box]
     if not corners:

@@ -21,7 +21,8 @@ import bpy
 
 from . import eevee_settings
 from .bake import LUM
-from .light_objects import NOT_SCENERY, OBJECT_TAG, VOLUME_TAG, add_to_lamps, baked_lights, scene_box, sun_direction
+from .light_objects import (OBJECT_TAG, VOLUME_TAG, add_to_lamps, baked_lights, scene_box, scenery,
+                            sun_direction)
 from .world_mix import has_residual
 
 # Shadow pages one sun takes in a volume probe bake, at any shadow resolution scale: the most measured over plane
@@ -119,10 +120,10 @@ def _seen(scene):
     lamps = [(o.name, _placed(o), tuple(round(c, 5) for c in o.data.color), round(o.data.energy, 5),
               round(getattr(o.data, "angle", 0.0), 5), round(getattr(o.data, "shadow_soft_size", 0.0), 5))
              for o in lights if o.type == "LIGHT" and not o.hide_render]
-    scenery = [(o.name, _placed(o), o.data.name if o.data else "",
-                tuple(getattr(o.data, "resolution_" + a, 0) for a in "xyz") if o.type == "LIGHT_PROBE" else ())
-               for o in scene.objects if not o.hide_render and (o.type == "LIGHT_PROBE" or o.type not in NOT_SCENERY)]
-    return _digest(sorted(lamps)), _digest(sorted(scenery))
+    objects = [(o.name, _placed(o), o.data.name if o.data else "") for o in scenery(scene, rendered_only=True)]
+    probes = [(o.name, _placed(o), tuple(getattr(o.data, "resolution_" + a) for a in "xyz"))
+              for o in volume_probes(scene)]
+    return _digest(sorted(lamps)), _digest(sorted(objects) + sorted(probes))
 
 
 def remember(scene):

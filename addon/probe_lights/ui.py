@@ -135,13 +135,18 @@ def _draw_results(layout, context, width, measure):
     _draw_probe_bake(layout, scene, width, measure)
 
 
-def _draw_probe_bake(layout, scene, width, measure):
-    """What EEVEE's light probe bake lacks for the baked suns, with the bake that makes room; that the probes were
-    baked with other lamps or objects, with the bake again; or, with no volume probe, the offer of one fitted around
-    the scene."""
-    notes = [(note, icon) for note, icon in ((probe_volumes.stale(scene), "INFO"),
-                                             (probe_volumes.advice(scene), "ERROR"),
-                                             (probe_volumes.offer(scene), "INFO")) if note]
+def _probe_bake_notes(scene, offer=True):
+    """[(line, icon)]: that the probes were baked with other lamps or objects; what EEVEE's light probe bake lacks
+    for the baked suns; with `offer` and no volume probe, the offer of one fitted around the scene."""
+    notes = [(probe_volumes.stale(scene), "INFO"), (probe_volumes.advice(scene), "ERROR")]
+    if offer:
+        notes.append((probe_volumes.offer(scene), "INFO"))
+    return [(note, icon) for note, icon in notes if note]
+
+
+def _draw_probe_bake(layout, scene, width, measure, notes=None):
+    """The probe bake's notes (_probe_bake_notes) in a box with the add-on's bake of the probes."""
+    notes = _probe_bake_notes(scene) if notes is None else notes
     if notes:
         box = layout.box()
         column = box.column(align=True)
@@ -151,11 +156,13 @@ def _draw_probe_bake(layout, scene, width, measure):
 
 
 def _draw_in_blenders_bake(self, context):
-    """Appended to Blender's own light probe bake panels: the same note and button, where the user bakes."""
-    if context.scene is not None and (probe_volumes.advice(context.scene) or probe_volumes.stale(context.scene)):
+    """Appended to Blender's own light probe bake panels: the same notes and button, where the user bakes (not the
+    offer of a volume: these panels belong to a volume or list the scene's)."""
+    notes = _probe_bake_notes(context.scene, offer=False) if context.scene is not None else []
+    if notes:
         region = context.region
         width = 0.95 * ((region.width if region else 300) - 58 * context.preferences.system.ui_scale)
-        _draw_probe_bake(self.layout, context.scene, width, _font_measure())
+        _draw_probe_bake(self.layout, context.scene, width, _font_measure(), notes)
 
 
 # Blender's panels that hold its light probe bake button: the probe's own (Object Data) and the scene's (Render
