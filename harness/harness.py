@@ -257,6 +257,8 @@ def run(tests):
             print("FAIL %s" % test.__name__, flush=True)
             traceback.print_exc()
     print("%d passed, %d failed" % (passed, failed), flush=True)
+    if "render_cache" in sys.modules:
+        sys.modules["render_cache"].report()
     if bpy.app.background and getattr(bpy.app, "binary_path", "") == "":
         # bpy as a module: after wm.open_mainfile and an EEVEE render (test_eevee.py), bpy 4.5's teardown at
         # interpreter exit hung under Xvfb (the tests had passed and printed). Nothing is left to save: leave now.

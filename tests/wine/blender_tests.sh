@@ -20,6 +20,10 @@ profile_env=()
 for kind in scripts config extensions datafiles; do
   profile_env+=("--env=BLENDER_USER_${kind^^}=$(windows "$profile/$kind")")
 done
+if [[ -n ${PROBELIGHTS_RENDER_CACHE:-} ]]; then  # the render tests' Cycles renders remembered (harness/render_cache.py)
+  mkdir -p "$PROBELIGHTS_RENDER_CACHE"
+  profile_env+=("--env=PROBELIGHTS_RENDER_CACHE=$(windows "$PROBELIGHTS_RENDER_CACHE")")
+fi
 package=$(sed -n 's/^version = "\(.*\)"/\1/p' "$repo/addon/probe_lights/blender_manifest.toml")
 bash "$here/run.sh" "$env" "${profile_env[@]}" "$test" -- \
   --zip "$(windows "$build/probe_lights-$package-windows_x64.zip")" --shared "$(windows "$repo/../shared")" "$@"
