@@ -44,6 +44,8 @@ KINDS = ("scenes", "objects", "meshes", "curves", "metaballs", "lattices", "arma
 VOLATILE = {"rna_type", "session_uid", "is_evaluated", "original", "users", "is_dirty", "bindcode", "tag",
             "is_runtime_data", "preview", "has_data", "filepath", "filepath_raw", "is_missing", "tool_settings",
             "library_weak_reference", "is_library_indirect", "pixels", "depsgraph", "display",
+            # a packed image's file (Blender 3.4 writes 512 bytes of its EXR differently each time): its pixels are
+            "packed_file", "packed_files",
             # what Blender derives when it evaluates the scene (from the transforms and the parents walked)
             "matrix_world", "matrix_local", "dimensions", "bound_box",
             # the add-on's timings and its report of them
@@ -104,7 +106,7 @@ class _Walk:
         self.data(a)
 
     def struct(self, s, depth=0):
-        key = s.as_pointer()
+        key = (s.as_pointer(), s.bl_rna.identifier)  # a struct may begin where its first member does
         if key in self.seen:  # a struct reached again: name it by when it was first reached
             self.feed("seen", self.seen[key])
             return
