@@ -138,10 +138,7 @@ class _Walk:
             elif prop.type == "COLLECTION":
                 self.collection(value, prop, depth)
             elif prop.type in ("FLOAT", "INT", "BOOLEAN") and getattr(prop, "array_length", 0) > 16:
-                size = int(np.prod([d for d in prop.array_dimensions if d]))
-                a = np.empty(size, np.float32 if prop.type == "FLOAT" else np.int32)
-                value.foreach_get(a)
-                self.data(a)
+                self.data(np.array(value, np.float32 if prop.type == "FLOAT" else np.int32).ravel())
             elif hasattr(value, "__len__") and not isinstance(value, str):
                 self.feed(tuple(value) if prop.type != "ENUM" else sorted(value))
             else:

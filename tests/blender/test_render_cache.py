@@ -1,0 +1,133 @@
+"""The render tests' cache (harness/render_cache.py) must never hand back a render of another scene: every change
+that can change a picture changes the key, and the same scene built twice has the same key. No render is made.
+
+    tests/blender/run.sh blender tests/blender/test_render_cache.py build/probe_lights-0.1.0-linux_x64.zip ../shared
+"""
+
+import math
+import os
+import sys
+import tempfile
+
+import bpy
+import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "harness"))
+import harness  # noqa: E402
+import render_cache  # noqa: E402
+import render_scene  # noqa: E402
+
+ARGS = harness.args()
+harness.install_addon(ARGS.zip)
+render_cache.FOLDER = tempfile.mkdtemp()
+
+
+def scene_of_the_tests():
+    harness.empty_scene()
+    world = harness.env_world(bpy.data.images.load(harness.BUNDLED_PROBE), rotation=(0.0, 0.0, 0.5))
+    render_scene.sphere_over_plane(64, 48, 16)
+    return bpy.context.scene, world
+
+
+def node(tree, idname):
+    return next(n for n in tree.nodes if n.bl_idname == idname)
+
+
+def changes(scene, world):
+    """(what, a function that changes it, one that puts it back): each must change the key."""
+    sphere = next(o for o in scene.objects if o.type == "MESH" and len(o.data.vertices) > 4)
+    material = sphere.active_material
+    bsdf = next(n for n in material.node_tree.nodes if "Bsdf" in n.bl_idname)
+    colour = bsdf.inputs[0].default_value[:]
+    image = next(i for i in bpy.data.images if i.source == "FILE")
+    mapping, background = node(world.node_tree, "ShaderNodeMapping"), world.node_tree.nodes["Background"]
+    lamp = bpy.data.objects.new("lamp", bpy.data.lights.new("lamp", "SUN"))
+    scene.collection.objects.link(lamp)
+
+    def setter(owner, name, value):
+        old = getattr(owner, name)
+        old = old[:] if hasattr(old, "__len__") and not isinstance(old, str) else old
+        return lambda: setattr(owner, name, value), lambda: setattr(owner, name, old)
+
+    def pixel(value):
+        def f():
+            a = np.empty(len(image.pixels), np.float32)
+            image.pixels.foreach_get(a)
+            a[4 * 1000] = value
+            image.pixels.foreach_set(a)
+        return f
+
+    first = image.pixels[4 * 1000]
+    driven = lamp.data.driver_add("energy")
+    driven.driver.expression = "1.0"
+    return [
+        ("the world's rotation", *setter(mapping.inputs["Rotation"], "default_value", (0.0, 0.0, 0.6))),
+        ("the world's strength", *setter(background.inputs["Strength"], "default_value", 2.0)),
+        ("a material's colour", lambda: setattr(bsdf.inputs[0], "default_value", (0.1, 0.2, 0.3, 1.0)),
+         lambda: setattr(bsdf.inputs[0], "default_value", colour)),
+        ("an object's place", *setter(sphere, "location", (0.0, 0.0, 0.01))),
+        ("an object hidden", *setter(sphere, "hide_render", True)),
+        ("the camera's lens", *setter(scene.camera.data, "lens", 36.0)),
+        ("a pixel of the probe", pixel(first + 1.0), pixel(first)),
+        ("the samples", *setter(scene.cycles, "samples", 17)),
+        ("the seed", *setter(scene.cycles, "seed", 3)),
+        ("the resolution", *setter(scene.render, "resolution_x", 65)),
+        ("the film", *setter(scene.render, "film_transparent", not scene.render.film_transparent)),
+        ("a lamp's angle", *setter(lamp.data, "angle", 0.3)),
+        ("a lamp's direction", *setter(lamp, "rotation_euler", (0.3, 0.0, 0.0))),
+        ("a lamp's rays", *setter(lamp, "visible_diffuse", False)),
+        ("a driver", lambda: setattr(driven.driver, "expression", "2.0"),
+         lambda: setattr(driven.driver, "expression", "1.0")),
+        ("an ID property", lambda: lamp.__setitem__("probe_lights_test", 1), lambda: lamp.pop("probe_lights_test")),
+    ]
+
+
+def test_every_change_to_what_a_render_reads_changes_the_key():
+    scene, world = scene_of_the_tests()
+    for what, change, back in changes(scene, world):
+        before = render_cache.key(scene)
+        change()
+        changed = render_cache.key(scene)
+        back()
+        assert changed != before, "the key missed %s" % what
+        assert render_cache.key(scene) == before, "the key did not come back after %s" % what
+
+
+def test_the_same_scene_built_again_has_the_same_key():
+    first = render_cache.key(scene_of_the_tests()[0])
+    second = render_cache.key(scene_of_the_tests()[0])
+    assert first is not None and first == second
+
+
+def test_what_is_not_remembered():
+    scene, _ = scene_of_the_tests()
+    scene.render.engine = harness.eevee_engine()
+    assert render_cache.key(scene) is None  # EEVEE's baked light probes are outside RNA
+    scene.render.engine = "CYCLES"
+    image = next(i for i in bpy.data.images if i.source == "FILE")
+    image.source = "SEQUENCE"
+    assert render_cache.key(scene) is None  # its pixels are the frame's
+    image.source = "FILE"
+    folder, render_cache.FOLDER = render_cache.FOLDER, ""
+    assert render_cache.key(scene) is None  # not asked for
+    render_cache.FOLDER = folder
+
+
+def test_a_remembered_render_of_another_scene_fails_the_verification():
+    k = "f" * 64
+    pixels = np.full((4, 4, 4), 0.5, np.float32)
+    render_cache.store(k, pixels)
+    assert np.array_equal(render_cache.lookup(k), pixels)
+    render_cache.store(k, pixels, pixels + 1e-6)  # float rounding: the same render
+    try:
+        render_cache.store(k, pixels, pixels * 1.03)  # another seed is ~3e-2 apart
+    except AssertionError as e:
+        assert "misses a property" in str(e), e
+    else:
+        raise AssertionError("a render 3 % apart was taken for the remembered one")
+    assert math.isclose(float(render_cache.lookup(k)[0, 0, 0]), 0.5)
+
+
+harness.run([test_every_change_to_what_a_render_reads_changes_the_key,
+             test_the_same_scene_built_again_has_the_same_key, test_what_is_not_remembered,
+             test_a_remembered_render_of_another_scene_fails_the_verification])
