@@ -152,9 +152,7 @@ class _Walk:
         item = prop.fixed_type
         if n > BIG and not _is_id(item):
             for p in item.properties:
-                # A polygon's vertices are a run of its loops' (loop_start, loop_total, MeshLoop.vertex_index).
-                if p.type in ("FLOAT", "INT", "BOOLEAN") and p.identifier not in VOLATILE and not (
-                        item.identifier == "MeshPolygon" and p.identifier == "vertices"):
+                if p.type in ("FLOAT", "INT", "BOOLEAN") and p.identifier not in VOLATILE:
                     self.array(coll, p, n)
             return
         for value in coll:
