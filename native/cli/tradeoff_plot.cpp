@@ -85,7 +85,7 @@ void writeTradeoffPlot(const std::vector<TradeoffRow>& rows, Effects effects, co
   int legend = top + 10;
   for (std::size_t m = 0; m < placementMethods().size(); ++m)
     for (bool refit : {false, true}) {
-      const Method method = placementMethods()[m].method;
+      const Method method = placementMethods()[m].method();
       const std::array<float, 3>& colour = palette[m % palette.size()];
       std::vector<const TradeoffRow*> curve;
       for (const auto& r : pts)

@@ -1,5 +1,6 @@
-// The placement methods' registrations (placement.h): the one place that lists them. A method that cuts the
-// working grid registers its cut rule; one that places lights from the pixels registers that function.
+// The placement methods' registrations (placement.h): the core's own listed here, a caller's added by
+// registerPlacementMethod. A method that cuts the working grid registers its cut rule; one that places lights
+// from the pixels registers that function.
 #include <utility>
 
 #include "probelights/error.h"
@@ -33,43 +34,63 @@ BakeResult shPlace(const Probe& probe, const BakeOptions& options) {
   return result;
 }
 
-const std::vector<PlacementMethod> kPlacementMethods{
-    {Method::MedianCut,
-     "median-cut",
-     {"mediancut", "median"},
-     "median cut",
-     "Equal-energy regions (Debevec 2005)",
-     medianCutRule,
-     nullptr},
-    {Method::Variance,
-     "variance",
-     {"variance-minimization"},
-     "variance minimization",
-     "Cut where the light's spread is least (Viriyothai & Debevec 2009)",
-     varianceRule,
-     nullptr},
-    {Method::SphericalHarmonics,
-     "sh",
-     {"spherical-harmonics"},
-     "SH importance warping",
-     "Cells of equal SH energy by hierarchical warping (Jarosz 2009, Berger 2011)",
-     nullptr,
-     shPlace},
-};
+std::deque<PlacementMethod>& registry() {
+  static std::deque<PlacementMethod> methods{
+      {"median-cut",
+       {"mediancut", "median"},
+       "median cut",
+       "Equal-energy regions (Debevec 2005)",
+       medianCutRule,
+       nullptr},
+      {"variance",
+       {"variance-minimization"},
+       "variance minimization",
+       "Cut where the light's spread is least (Viriyothai & Debevec 2009)",
+       varianceRule,
+       nullptr},
+      {"sh",
+       {"spherical-harmonics"},
+       "SH importance warping",
+       "Cells of equal SH energy by hierarchical warping (Jarosz 2009, Berger 2011)",
+       nullptr,
+       shPlace},
+  };
+  return methods;
+}
+
+const PlacementMethod* find(std::string_view name) {
+  for (const PlacementMethod& m : registry()) {
+    if (m.name == name) return &m;
+    for (const std::string& alias : m.aliases)
+      if (alias == name) return &m;
+  }
+  return nullptr;
+}
 
 }  // namespace
 
-const std::vector<PlacementMethod>& placementMethods() { return kPlacementMethods; }
+const std::deque<PlacementMethod>& placementMethods() { return registry(); }
 
 const PlacementMethod& placementMethod(Method method) {
-  for (const PlacementMethod& m : kPlacementMethods)
-    if (m.method == method) return m;
-  throw Error("a placement method without a registration (methods.cpp)");
+  for (const PlacementMethod& m : registry())
+    if (m.name == method.name()) return m;
+  throw Error("a placement method without a registration: '" + std::string(method.name()) + "'");
+}
+
+void registerPlacementMethod(PlacementMethod method) {
+  if ((method.rule == nullptr) == (method.place == nullptr))
+    throw Error("placement method '" + method.name +
+                "': register a cut rule or a place function, one of them");
+  for (const std::string& name : method.aliases)
+    if (find(name)) throw Error("placement method '" + method.name + "': the name '" + name + "' is taken");
+  if (method.name.empty() || find(method.name))
+    throw Error("placement method '" + method.name + "': the name is empty or taken");
+  registry().push_back(std::move(method));
 }
 
 std::vector<Method> everyMethod() {
   std::vector<Method> out;
-  for (const PlacementMethod& m : kPlacementMethods) out.push_back(m.method);
+  for (const PlacementMethod& m : registry()) out.push_back(m.method());
   return out;
 }
 
@@ -78,13 +99,9 @@ bool usesWorkingGrid(Method method) { return placementMethod(method).rule != nul
 std::string toString(Method method) { return placementMethod(method).name; }
 
 Method parseMethod(const std::string& name) {
-  for (const PlacementMethod& m : kPlacementMethods) {
-    if (m.name == name) return m.method;
-    for (const std::string& alias : m.aliases)
-      if (alias == name) return m.method;
-  }
+  if (const PlacementMethod* m = find(name)) return m->method();
   std::vector<std::string> names;
-  for (const PlacementMethod& m : kPlacementMethods) names.push_back(m.name);
+  for (const PlacementMethod& m : registry()) names.push_back(m.name);
   throw Error("unknown method '" + name + "': use " + listOf(names));
 }
 

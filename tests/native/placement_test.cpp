@@ -28,7 +28,7 @@ using testing::uniformProbe;
 std::vector<Method> gridMethods() {
   std::vector<Method> out;
   for (const PlacementMethod& m : placementMethods())
-    if (m.rule) out.push_back(m.method);
+    if (m.rule) out.push_back(m.method());
   return out;
 }
 const std::vector<Method> kMethods = gridMethods();
@@ -80,14 +80,14 @@ TEST(PlacementMethods, EveryRegisteredMethodIsNamedParsedAndBakes) {
   for (const PlacementMethod& m : placementMethods()) {
     SCOPED_TRACE(m.name);
     EXPECT_NE(m.rule == nullptr, m.place == nullptr);  // cuts the working grid, or places from the pixels
-    EXPECT_EQ(usesWorkingGrid(m.method), m.rule != nullptr);
-    EXPECT_EQ(toString(m.method), m.name);
-    EXPECT_EQ(parseMethod(m.name), m.method);
-    for (const std::string& alias : m.aliases) EXPECT_EQ(parseMethod(alias), m.method);
+    EXPECT_EQ(usesWorkingGrid(m.method()), m.rule != nullptr);
+    EXPECT_EQ(toString(m.method()), m.name);
+    EXPECT_EQ(parseMethod(m.name), m.method());
+    for (const std::string& alias : m.aliases) EXPECT_EQ(parseMethod(alias), m.method());
     EXPECT_NE(option.values.find(m.name), std::string::npos);
     EXPECT_NE(option.help.find(m.label), std::string::npos);
     for (int n : {1, 8, 33}) {
-      auto r = bakeWith(t.probe, m.method, n);
+      auto r = bakeWith(t.probe, m.method(), n);
       EXPECT_GE(r.lights.size(), 1u);
       EXPECT_LE(static_cast<int>(r.lights.size()), n);
       expectFiniteAndConserving(t.probe, r, 1e-6);

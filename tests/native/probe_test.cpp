@@ -247,7 +247,7 @@ TEST(Probe, BufferCheckedInTheGridsPassGivesWhatACheckedProbeGives) {
     for (const char* resolution : {"full", "16"})
       for (Method method : {Method::Variance, Method::MedianCut, Method::SphericalHarmonics})
         for (bool evaluate : {false, true}) {
-          SCOPED_TRACE(std::string(resolution) + " method " + std::to_string(static_cast<int>(method)) +
+          SCOPED_TRACE(std::string(resolution) + " method " + toString(method) +
                        (evaluate ? " evaluated" : "") + " channels " + std::to_string(c.view.channels));
           BakeOptions o;
           o.lights = 6, o.method = method, o.resolution = WorkingResolution::parse(resolution);

@@ -3,9 +3,11 @@
 // evaluation and the auto count).
 #pragma once
 
+#include <deque>
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "probelights/lights.h"
@@ -16,11 +18,27 @@
 
 namespace probelights {
 
-// The placement methods. Each is registered once, in kPlacementMethods (methods.cpp), with its names and
-// how it places lights; everything else (bake(), the options' usage texts, the tradeoff) reads the
-// registration. Adding a method: its own source, its value here, its registration, its tests.
-enum class Method { MedianCut, Variance, SphericalHarmonics };
-std::string toString(Method method);
+// A placement method, by the name options call it ("variance"). Each method is registered once with its names
+// and how it places lights (PlacementMethod, below): the core's own in methods.cpp, a caller's by
+// registerPlacementMethod. Everything else (bake(), the options' usage texts, the add-on's menu, the
+// tradeoff) reads the registrations. Adding a method to the core: its own source in native/src (CMake builds
+// every file there), its registration in methods.cpp, its tests, and scripts/addon_tables.py run again for
+// the add-on's menu (core_tables.json).
+class Method {
+ public:
+  constexpr explicit Method(std::string_view name) : name_(name) {}
+  constexpr std::string_view name() const { return name_; }
+  friend constexpr bool operator==(Method a, Method b) { return a.name_ == b.name_; }
+  static const Method MedianCut, Variance, SphericalHarmonics;  // the core's own
+
+ private:
+  std::string_view name_;  // a literal's, or a registration's (registrations last as long as the program)
+};
+inline constexpr Method Method::MedianCut{"median-cut"};
+inline constexpr Method Method::Variance{"variance"};
+inline constexpr Method Method::SphericalHarmonics{"sh"};
+
+std::string toString(Method method);          // throws Error for a name without a registration
 Method parseMethod(const std::string& name);  // throws Error naming the choices
 
 struct BakeOptions {
@@ -79,21 +97,30 @@ BakeResult lightsOfPartition(const Probe& probe, const MomentTable& table, Centr
 // The working-grid row of a lat-long probe's horizon when options split there, else -1 (partitionSphere).
 int horizonRow(const Probe& probe, const MomentTable& table, const BakeOptions& options);
 
-// A placement method as registered (methods.cpp). A method either cuts the working grid (`rule`: the rule
-// that picks each cut, partition.h) or places its lights from the probe's pixels (`place`).
+// A placement method as registered. A method either cuts the working grid (`rule`: the rule that picks each
+// cut, partition.h) or places its lights from the probe's pixels (`place`).
 struct PlacementMethod {
-  Method method;
   std::string name;                  // what options call it: "variance"
   std::vector<std::string> aliases;  // other spellings accepted: "variance-minimization"
   std::string label;                 // for usage texts: "variance minimization"
   std::string help;                  // what it does, one line (the add-on's menu tooltip)
   std::unique_ptr<CutRule> (*rule)(const Probe& probe) = nullptr;
   BakeResult (*place)(const Probe& probe, const BakeOptions& options) = nullptr;
+
+  Method method() const { return Method(name); }  // of a registration (placementMethods())
 };
 
-// Every registered method, in the order usage texts list them.
-const std::vector<PlacementMethod>& placementMethods();
-const PlacementMethod& placementMethod(Method method);
+// Every registered method, in the order usage texts list them: the core's own first. A registration never
+// moves (a deque grows at its end), so a Method names it for as long as the program runs.
+const std::deque<PlacementMethod>& placementMethods();
+const PlacementMethod& placementMethod(Method method);  // throws Error for a name without a registration
+
+// Registers a caller's method after the core's own: bake(), parseMethod, the request options and their usage
+// texts, methodMenu and the tradeoff then offer it as one of theirs. Call it before anything reads the
+// registrations (at static initialization: the request table is made when first asked for; see
+// tests/native/example_method.cpp). Throws Error for a name or alias already taken, or a registration without
+// exactly one of rule and place.
+void registerPlacementMethod(PlacementMethod method);
 std::vector<Method> everyMethod();
 
 // Whether bake() builds a working grid for `method` (the methods that cut it).
