@@ -1,8 +1,8 @@
-"""Renders remembered across runs: a Cycles render is a function of the scene's data, the Blender that renders it,
-the machine's CPU (Cycles picks its kernel by the CPU's features) and the code that runs at render time (the
-add-on's handlers and drivers). The render tests render the same scenes run after run: the world-lit references
-always, the lamps whenever the core's lights did not change. render_scene.render() asks here first and renders
-only on a miss, as ccache compiles only what changed.
+"""Renders remembered across runs: a render is a function of the scene's data, the Blender that renders it, the
+machine's CPU (Cycles picks its kernel by the CPU's features) or GPU driver (EEVEE's), and the code that runs at
+render time (the add-on's handlers and drivers). The render tests render the same scenes run after run: the
+world-lit references always, the lamps whenever the core's lights did not change. render_scene.render() asks here
+first and renders only on a miss, as ccache compiles only what changed.
 
 The key is a SHA-256 over every property of every data-block a render can read (objects, meshes, materials, node
 groups, lights, worlds, images' pixels, cameras, scenes with their render settings, actions and drivers, ID
@@ -10,11 +10,16 @@ properties), walked through Blender's RNA, so a change anywhere in the scene is 
 the CPU, and the Python files of every package with a handler or a driver function registered (the add-on). A
 property that changes from run to run without changing the picture (VOLATILE) is left out.
 
+EEVEE is remembered where nothing it reads lies outside RNA: no light probe objects (their baked light is not in
+RNA) and, in EEVEE Legacy, no baked light cache; keyed also by the OpenGL driver (gpu.platform, known once EEVEE
+has rendered in the process: the first EEVEE render of a process is always made). What Blender prints while it
+renders is remembered with the pixels and printed again (ctest fails EEVEE tests on "Shadow buffer full").
+
 Opt-in, for tests only (benchmarks time their renders): PROBELIGHTS_RENDER_CACHE names the folder
 (tests/CMakeLists.txt sets it to ~/.cache/probelights/renders for the render tier). PROBELIGHTS_RENDER_CACHE_VERIFY=1
 renders every time and fails on a remembered render that differs by more than float rounding (the key missed
-something): run the render tier once so after a change to this file. Only Cycles is remembered (EEVEE's baked
-light probes live outside RNA), and only scenes whose files are images (not volumes or caches read from disk).
+something): run the render tier once so after a change to this file. Only scenes whose files are images are
+remembered (not volumes or caches read from disk).
 """
 
 import glob
@@ -276,9 +281,46 @@ def _digest_of(folders):
     return digest.hexdigest()
 
 
+EEVEE = ("BLENDER_EEVEE", "BLENDER_EEVEE_NEXT")
+
+
+_eevee_rendered = []  # whether render_scene.render() made an EEVEE render in this process
+
+
+def _gpu():
+    """The OpenGL driver EEVEE renders with, or None before EEVEE rendered in this process: Blender opens no
+    OpenGL context in background mode until then, and asking before crashes Blender 3.4 (measured, 3.4.1)."""
+    if not _eevee_rendered:
+        return None
+    try:
+        import gpu
+        return (gpu.platform.vendor_get(), gpu.platform.renderer_get(), gpu.platform.version_get())
+    except (ImportError, SystemError, AttributeError):
+        return None
+
+
+def _engine(scene):
+    """What keys the engine's render beyond the data-blocks (the GPU's driver for EEVEE), or None when its render
+    is not to be remembered: EEVEE with light probes (their baked light lies outside RNA), or EEVEE Legacy with a
+    baked light cache (the scene's, outside RNA too)."""
+    engine = scene.render.engine
+    if engine == "CYCLES":
+        return (engine,)
+    if engine not in EEVEE:
+        return None
+    if any(o.type == "LIGHT_PROBE" for o in bpy.data.objects):
+        return None
+    info = getattr(scene.eevee, "gi_cache_info", "")
+    if info and not info.startswith("No light cache"):
+        return None
+    gpu = _gpu()
+    return None if gpu is None else (engine,) + gpu
+
+
 def key(scene):
     """The render's key, or None when it is not to be remembered."""
-    if not FOLDER or scene.render.engine != "CYCLES":
+    engine = _engine(scene) if FOLDER else None
+    if engine is None:
         return None
     # What the render would change before it renders (the add-on follows the engine and the world's strength
     # there): done first, so the key is of the scene rendered and a remembered render leaves the scene as a render
@@ -287,7 +329,7 @@ def key(scene):
         handler(scene, None)
     w = _Walk()
     w.feed(bpy.app.version_string, bpy.app.build_hash, getattr(bpy.app, "build_platform", b""), sys.platform,
-           platform.machine(), _cpu(), _render_time_code(), scene.name_full)
+           platform.machine(), _cpu(), engine, _render_time_code(), scene.name_full)
     try:
         for kind in KINDS:
             blocks = getattr(bpy.data, kind, None)
@@ -314,23 +356,71 @@ def _path(k):
     return os.path.join(FOLDER, k[:2], k + ".npy")
 
 
+def _printed_path(k):
+    return os.path.join(FOLDER, k[:2], k + ".printed")
+
+
 def lookup(k):
-    """The remembered pixels of key `k`, or None."""
+    """The remembered pixels of key `k`, or None. What Blender printed while it made them is printed again."""
     _counts["renders"] += 1
     if k is None:
         return None
     try:
         pixels = np.load(_path(k))
+        printed = b""
+        if os.path.exists(_printed_path(k)):
+            with open(_printed_path(k), "rb") as f:
+                printed = f.read()
     except (OSError, ValueError):
         return None
     os.utime(_path(k))  # the newest are kept
     _counts["reused"] += 1
+    if printed and not VERIFY:
+        sys.stdout.flush()
+        os.write(sys.stdout.fileno(), printed)
     return pixels
 
 
-def store(k, pixels, remembered=None):
-    """Remembers `pixels` under `k` whole (written beside, then renamed); with VERIFY, `remembered` (what lookup
-    gave) must be the same render (within VERIFY_BOUND)."""
+def printing(k, render):
+    """Calls render(); returns what the process printed meanwhile (Blender's C code prints past Python's
+    sys.stdout), which goes on to the output too. Only for a remembered EEVEE render (what a test's ctest reads
+    of it), on Linux; else b"" and the output is untouched."""
+    eevee = bpy.context.scene.render.engine in EEVEE
+    if k is None or not sys.platform.startswith("linux") or not eevee:
+        render()
+        if eevee:
+            _eevee_rendered.append(True)
+        return b""
+    import ctypes
+    import tempfile
+    libc = ctypes.CDLL(None)
+    sys.stdout.flush()
+    sys.stderr.flush()
+    libc.fflush(None)
+    saved = [os.dup(1), os.dup(2)]
+    with tempfile.TemporaryFile() as f:
+        os.dup2(f.fileno(), 1)
+        os.dup2(f.fileno(), 2)
+        try:
+            render()
+        finally:
+            sys.stdout.flush()
+            sys.stderr.flush()
+            libc.fflush(None)
+            os.dup2(saved[0], 1)
+            os.dup2(saved[1], 2)
+            for fd in saved:
+                os.close(fd)
+        f.seek(0)
+        printed = f.read()
+    os.write(1, printed)
+    _eevee_rendered.append(True)
+    return printed
+
+
+def store(k, pixels, remembered=None, printed=b""):
+    """Remembers `pixels` under `k` whole (written beside, then renamed), with what Blender printed making them;
+    with VERIFY, `remembered` (what lookup gave) must be the same render (within VERIFY_BOUND)."""
     if k is None:
         return
     if remembered is not None:
@@ -345,6 +435,11 @@ def store(k, pixels, remembered=None):
         return
     path = _path(k)
     os.makedirs(os.path.dirname(path), exist_ok=True)
+    if printed:  # before the pixels: remembered pixels always find their output
+        tmp = "%s.%d.tmp" % (_printed_path(k), os.getpid())
+        with open(tmp, "wb") as f:
+            f.write(printed)
+        os.replace(tmp, _printed_path(k))
     tmp = "%s.%d.tmp.npy" % (path, os.getpid())
     np.save(tmp, pixels)
     os.replace(tmp, path)
@@ -358,7 +453,9 @@ def _trim():
         if total <= LIMIT_BYTES:
             break
         try:
-            os.remove(p)
+            os.remove(p)  # the pixels first: output without pixels is never read
+            if os.path.exists(p[:-len(".npy")] + ".printed"):
+                os.remove(p[:-len(".npy")] + ".printed")
         except OSError:
             pass
         total -= size

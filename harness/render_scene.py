@@ -227,8 +227,8 @@ def relative_rms(truth, got):
 
 
 def render():
-    """Renders the scene; returns the linear RGBA pixels, rows top to bottom. A test's Cycles render of a scene
-    rendered before is taken from the render cache (render_cache.py, opt-in)."""
+    """Renders the scene; returns the linear RGBA pixels, rows top to bottom. A test's render of a scene rendered
+    before is taken from the render cache (render_cache.py, opt-in)."""
     scene = bpy.context.scene
     key = render_cache.key(scene)
     remembered = render_cache.lookup(key)
@@ -237,7 +237,7 @@ def render():
     fd, path = tempfile.mkstemp(suffix=".exr")
     os.close(fd)
     scene.render.filepath = path
-    bpy.ops.render.render(write_still=True)
+    printed = render_cache.printing(key, lambda: bpy.ops.render.render(write_still=True))
     img = bpy.data.images.load(path)
     w, h = img.size[:]
     a = np.empty(w * h * 4, np.float32)
@@ -245,7 +245,7 @@ def render():
     bpy.data.images.remove(img)
     os.remove(path)
     pixels = a.reshape(h, w, 4)[::-1].copy()
-    render_cache.store(key, pixels, remembered)
+    render_cache.store(key, pixels, remembered, printed)
     return pixels
 
 
