@@ -176,7 +176,7 @@ class _Walk:
             if k in VOLATILE or k in registered:
                 continue
             v = v.to_dict() if hasattr(v, "to_dict") else (v.to_list() if hasattr(v, "to_list") else v)
-            self.feed("idprop", k, v)
+            self.feed("idprop", k, _steady(v))
 
     def mesh(self, mesh):
         """A mesh's polygons as coordinates (with their loops' UVs, material and smoothness), in an order of their
@@ -223,6 +223,16 @@ class _Walk:
         self.feed("pixels", image.name_full, w, h, image.channels)
         self.data(a)
         return True
+
+
+def _steady(value):
+    """An ID property's value without its VOLATILE keys at any depth: an add-on's settings opened without the
+    add-on are a plain group, its timings in it."""
+    if isinstance(value, dict):
+        return {k: _steady(v) for k, v in value.items() if k not in VOLATILE}
+    if isinstance(value, list):
+        return [_steady(v) for v in value]
+    return value
 
 
 def _is_id(rna):

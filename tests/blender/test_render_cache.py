@@ -96,8 +96,17 @@ def test_every_change_to_what_a_render_reads_changes_the_key():
 
 def test_the_same_scene_built_again_has_the_same_key():
     first = render_cache.key(scene_of_the_tests()[0])
-    second = render_cache.key(scene_of_the_tests()[0])
+    scene = scene_of_the_tests()[0]
+    second = render_cache.key(scene)
     assert first is not None and first == second
+    # The add-on's settings in a file opened without it: a plain group, its timings in it.
+    scene["settings_of_an_addon_not_here"] = {"count": 32, "last_ms": 145.9}
+    with_settings = render_cache.key(scene)
+    scene["settings_of_an_addon_not_here"]["last_ms"] = 146.7
+    assert render_cache.key(scene) == with_settings, "a timing changed the key"
+    scene["settings_of_an_addon_not_here"]["count"] = 16
+    assert render_cache.key(scene) != with_settings, "the key missed a setting in an ID property group"
+    del scene["settings_of_an_addon_not_here"]
 
 
 def test_what_is_not_remembered():
