@@ -339,7 +339,9 @@ def key(scene):
         handler(scene, None)
     w = _Walk()
     w.feed(bpy.app.version_string, bpy.app.build_hash, getattr(bpy.app, "build_platform", b""), sys.platform,
-           platform.machine(), _cpu(), engine, _render_time_code(), scene.name_full)
+           platform.machine(), _cpu(), _render_time_code(), scene.name_full)
+    if engine != ("CYCLES",):  # (Cycles' keys are as they were before EEVEE was remembered)
+        w.feed(engine)
     try:
         for kind in KINDS:
             blocks = getattr(bpy.data, kind, None)

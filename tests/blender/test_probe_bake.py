@@ -41,6 +41,10 @@ def _scene_with_volume(suns):
     bpy.ops.object.lightprobe_add(type="VOLUME", location=(0, 0, 1))
     volume = bpy.context.object
     volume.scale = (4, 4, 2)
+    # 256 rays a cell, not EEVEE's 2,048: the figures these tests print hold (bpy 4.5.15, 64 suns: 1.137 times as
+    # bright, 9.20 % and 8.93 % from Cycles against 9.11 % at 2,048, the world's part 0.000 %), and a bake of the
+    # 64 suns takes 6.4 s, not 16.0. The pool's pages are the suns', whatever the rays.
+    volume.data.bake_samples = 256
     return scene, volume
 
 
