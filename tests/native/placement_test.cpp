@@ -94,6 +94,10 @@ TEST(PlacementMethods, EveryRegisteredMethodIsNamedParsedAndBakes) {
     }
   }
   EXPECT_THROW(parseMethod("no-such-method"), Error);
+  // The core's own, by the constants its code names them with, are registered under those names.
+  for (Method m : {Method::MedianCut, Method::Variance, Method::SphericalHarmonics})
+    EXPECT_EQ(parseMethod(std::string(m.name())), m);
+  EXPECT_THROW(toString(Method("no-such-method")), Error);
 }
 
 TEST(Bake, AnyNGivesExactlyNLightsAndConservesEnergy) {

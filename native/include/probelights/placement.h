@@ -118,9 +118,10 @@ const PlacementMethod& placementMethod(Method method);  // throws Error for a na
 // Registers a caller's method after the core's own: bake(), parseMethod, the request options and their usage
 // texts, methodMenu and the tradeoff then offer it as one of theirs. Call it before anything reads the
 // registrations (at static initialization: the request table is made when first asked for; see
-// tests/native/example_method.cpp). Throws Error for a name or alias already taken, or a registration without
-// exactly one of rule and place.
+// tests/native/example_method_test.cpp), from one thread. Throws Error for a name or alias already taken, or
+// a registration without exactly one of rule and place.
 void registerPlacementMethod(PlacementMethod method);
+
 std::vector<Method> everyMethod();
 
 // Whether bake() builds a working grid for `method` (the methods that cut it).
