@@ -1,6 +1,6 @@
 """The render tests' cache (harness/render_cache.py) must never hand back a render of another scene: every change
 that can change a picture changes the key, and the same scene built twice has the same key. No Cycles render is made;
-EEVEE renders 32 x 24 pixels three times.
+EEVEE renders 32 x 24 pixels twice.
 
     tests/blender/run.sh blender tests/blender/test_render_cache.py build/probe_lights-0.1.0-linux_x64.zip ../shared
 """
@@ -142,7 +142,8 @@ def test_a_remembered_render_of_another_scene_fails_the_verification():
 def test_eevee_is_remembered_with_what_it_printed():
     """EEVEE renders are remembered once its OpenGL driver is known (after its first render in the process), with
     what Blender printed making them (ctest reads it: "Shadow buffer full" fails a test), and never with a light
-    probe in the scene (its baked light is outside RNA). Two renders of 32 x 24 pixels."""
+    probe in the scene (its baked light is outside RNA). Two renders of 32 x 24 pixels are made, the third asked for
+    is remembered."""
     if bpy.app.version < (4, 2, 0):
         print("  skipped: EEVEE Legacy renders only under X (Blender %s)" % bpy.app.version_string)
         return
