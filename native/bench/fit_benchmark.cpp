@@ -106,7 +106,9 @@ void BM_Refit(benchmark::State& state) {
   Click& c = click(static_cast<int>(state.range(0)));
   std::vector<Light> start = c.lights;
   fitSunAngles(*c.evaluator, start, true);
-  for (auto _ : state) benchmark::DoNotOptimize(refitIrradiance(*c.evaluator, start, nullptr, true));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(
+        refitIrradiance(*c.evaluator, start, nullptr, RefitOptions{.moveDirections = true}));
 }
 
 void BM_FinishLights(benchmark::State& state) {

@@ -12,11 +12,11 @@ std::vector<Light> finishAngled(const Evaluator& evaluator, std::vector<Light> l
   // and their colours for those angles. The refit is kept only if it fits the fit receivers better (the joint
   // fit can lose on shadows what it wins on shading).
   if (finish.refits(lights.size())) {
-    std::vector<Light> moved = refitIrradiance(evaluator, lights, nullptr, finish.moveDirections);
+    std::vector<Light> moved = refitIrradiance(evaluator, lights, nullptr, finish.refitOptions());
     keepSunCones(evaluator.sunCones(), moved);  // a moved light keeps its angle, which may now cross
     if (fitted) {
       applySunAngles(finish.angles, &evaluator, moved, true);
-      moved = refitIrradiance(evaluator, moved);
+      moved = refitIrradiance(evaluator, moved, nullptr, RefitOptions{.keepEnergy = finish.keepEnergy});
     }
     const std::vector<Receiver> receivers = evaluator.fitReceivers(true);
     if (evaluator.fitError(receivers, moved) <= evaluator.fitError(receivers, lights))

@@ -69,22 +69,40 @@ void moveDirections(const Evaluator& evaluator, const std::vector<Receiver>& rec
 }  // namespace
 
 void solveColours(const Evaluator& evaluator, const std::vector<Receiver>& receivers,
-                  std::vector<Light>& lights) {
+                  std::vector<Light>& lights, const Rgb* total) {
   const int m = static_cast<int>(receivers.size()), n = static_cast<int>(lights.size());
   if (n == 0) return;
+  const bool hold = total && ((*total)[0] > 0 || (*total)[1] > 0 || (*total)[2] > 0);
+  const int rows = m + (hold ? 1 : 0);
   // Weighted least squares: each row scaled by the square root of its set's weight.
-  std::vector<double> A(static_cast<std::size_t>(m) * n);
+  std::vector<double> A(static_cast<std::size_t>(rows) * n);
   parallelFor(n, [&](std::int64_t j) {  // a light's column at once (its cone prepared once)
     std::vector<double> column;
     evaluator.kernels(lights[j], receivers, 1.0, column);
     for (int i = 0; i < m; ++i) A[i * n + j] = std::sqrt(receivers[i].weight) * column[i];
   });
-  std::vector<std::vector<double>> b(3, std::vector<double>(m));
+  std::vector<std::vector<double>> b(3, std::vector<double>(rows));
   for (int c = 0; c < 3; ++c)
     for (int i = 0; i < m; ++i) b[c][i] = std::sqrt(receivers[i].weight) * receivers[i].truth[c];
-  const std::vector<std::vector<double>> x = nonNegativeLeastSquares(A, m, n, b);
-  for (int c = 0; c < 3; ++c)
-    for (int j = 0; j < n; ++j) lights[j].rgb[c] = x[c][j];
+  if (hold) {
+    // The sum as one more row, sum_j x_j = total, weighted kHoldWeight times the columns' root mean square
+    // norm: a penalty (Lawson & Hanson 1974, ch. 22, equality constraints by weighting) that leaves the sum a
+    // small fraction of the refit's usual shift off; the scaling below makes it exact. A larger weight would
+    // square into the normal equations' condition for no visible gain.
+    constexpr double kHoldWeight = 10;
+    double squares = 0;
+    for (std::size_t k = 0; k < static_cast<std::size_t>(m) * n; ++k) squares += A[k] * A[k];
+    const double weight = kHoldWeight * std::sqrt(squares / n);
+    for (int j = 0; j < n; ++j) A[static_cast<std::size_t>(m) * n + j] = weight;
+    for (int c = 0; c < 3; ++c) b[c][m] = weight * std::max(0.0, (*total)[c]);
+  }
+  const std::vector<std::vector<double>> x = nonNegativeLeastSquares(A, rows, n, b);
+  for (int c = 0; c < 3; ++c) {
+    double sum = 0;
+    for (int j = 0; j < n; ++j) sum += x[c][j];
+    const double scale = hold && (*total)[c] > 0 && sum > 0 ? (*total)[c] / sum : 1.0;
+    for (int j = 0; j < n; ++j) lights[j].rgb[c] = x[c][j] * scale;
+  }
 }
 
 bool placeDarkLights(const Evaluator& evaluator, const std::vector<Receiver>& receivers,
@@ -131,7 +149,7 @@ bool placeDarkLights(const Evaluator& evaluator, const std::vector<Receiver>& re
 }
 
 std::vector<Light> refitIrradiance(const Evaluator& evaluator, const std::vector<Light>& lights,
-                                   double* energyShift, bool moveDirs) {
+                                   double* energyShift, const RefitOptions& options) {
   // Fitted on the evaluator's fit receivers (1024 normals, and 1024 ground points with shadows), not the
   // points the error is measured on, so the error of a refit is not flattered.
   if (evaluator.fitNormals().empty())
@@ -143,15 +161,19 @@ std::vector<Light> refitIrradiance(const Evaluator& evaluator, const std::vector
   const int n = static_cast<int>(lights.size());
   std::vector<Light> out = lights;
   if (n == 0) return out;
-  solveColours(evaluator, receivers, out);
-  if (placeDarkLights(evaluator, receivers, out)) solveColours(evaluator, receivers, out);
+  Rgb sum{};
+  for (const Light& l : lights)
+    for (int c = 0; c < 3; ++c) sum[c] += l.rgb[c];
+  const Rgb* held = options.keepEnergy ? &sum : nullptr;
+  solveColours(evaluator, receivers, out, held);
+  if (placeDarkLights(evaluator, receivers, out)) solveColours(evaluator, receivers, out, held);
   // Three rounds up to 16 lights, two above: with many suns a third round changes the errors by nothing
   // measurable and costs time; with few it still lowers them (docs/decisions.md).
   constexpr int kThreeRoundsUpTo = 16;
   const int rounds = n <= kThreeRoundsUpTo ? 3 : 2;
-  for (int round = 0; moveDirs && round < rounds; ++round) {
+  for (int round = 0; options.moveDirections && round < rounds; ++round) {
     moveDirections(evaluator, receivers, out);
-    solveColours(evaluator, receivers, out);
+    solveColours(evaluator, receivers, out, held);
   }
   double before = 0, after = 0;
   for (int j = 0; j < n; ++j)

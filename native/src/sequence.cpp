@@ -261,7 +261,8 @@ void SequenceBaker::finishFrame(const Probe& probe, const MomentTable& table, Se
   for (std::size_t id = 0; id < frame.lights.size(); ++id)
     if (luminance(frame.lights[id].rgb) > 0)
       lit.push_back(static_cast<int>(id)), lights.push_back(frame.lights[id]);
-  const FinishOptions how{finish_.angles, finish_.refit, finish_.moveDirections};
+  FinishOptions how{finish_.angles, finish_.refit, finish_.moveDirections};
+  how.keepEnergy = sequence_.exactEnergy;
   if (finish_.refit && !how.refits(lights.size()))
     frame.notes.push_back({NoteKind::Warning, "the refit takes at most " + std::to_string(kMaxRefitLights) +
                                                   " lights: " + std::to_string(lights.size()) +

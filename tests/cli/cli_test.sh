@@ -230,6 +230,8 @@ expect_error "sequence of two sizes" "frame 2 is 32x16 latlong, the sequence's f
 expect_error "sequence by sh" "not by the sh method" bake-sequence "$tmp/seq/seq_####.pfm" --method sh
 expect_error "sequence smoothness" "the smoothness is a number from 0" bake-sequence "$tmp/seq/seq_####.pfm" --smoothness -1
 check "bake-sequence finishes frames as bake does (fitted angles, refit)" "'$bin' bake-sequence '$tmp/seq/seq_####.pfm' --lights 4 --sun-angles fit --refit -q -o - | python3 -c 'import json,sys; f = json.load(sys.stdin)[\"frames\"]; assert all(abs(x[\"energy_shift\"]) < 0.5 and len(x[\"lights\"]) == 4 for x in f), f'"
+check "bake-sequence's refit keeps every frame's energy exact (--exact-energy off lets it move)" "'$bin' bake-sequence '$tmp/seq/seq_####.pfm' --lights 4 --sun-angles fit --refit -q -o - | python3 -c 'import json,sys; f = json.load(sys.stdin)[\"frames\"]; assert all(abs(sum(map(sum, (l[\"rgb\"] for l in x[\"lights\"]))) / sum(x[\"total_rgb\"]) - 1) < 1e-9 for x in f), f' && '$bin' bake-sequence '$tmp/seq/seq_####.pfm' --lights 4 --refit --exact-energy off -q -o - >/dev/null"
+check "bake-sequence refuses --exact-energy maybe in one line" "! '$bin' bake-sequence '$tmp/seq/seq_####.pfm' --exact-energy maybe -q -o - 2>$tmp/ee.err && grep -q 'exact-energy takes on or off' $tmp/ee.err && test \$(wc -l < $tmp/ee.err) = 1"
 expect_error "sequence evaluator width" "width of at least 1" bake-sequence "$tmp/seq/seq_####.pfm" --evaluator-width 0
 expect_error "sequence frames backwards" "the first frame before the last" bake-sequence "$tmp/seq/seq_####.pfm" --frames 4-2
 expect_error "sequence fps" "--fps takes frames per second" bake-sequence "$tmp/seq/seq_####.pfm" --usd "$tmp/s.usda" --fps 0

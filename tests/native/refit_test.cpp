@@ -34,6 +34,38 @@ TEST(Refit, LowersTheDiffuseErrorOnRealProbes) {
                Error);  // not made for refit
 }
 
+TEST(Refit, HoldingTheEnergyKeepsEveryChannelsSumAndStillLowersTheError) {
+  // keepEnergy: the colours solved with each channel's sum held (a weighted row, then scaled exactly), with
+  // and without the directions moved; the lights still fit better than as cut, and a free refit, which may
+  // trade energy, fits at least as well.
+  Probe probe = loadProbe(PROBELIGHTS_BUNDLED_PROBE);
+  Evaluator ev(probe, kDiffuse | kShadow, {512, true});
+  for (int n : {4, 16, 64}) {
+    BakeOptions o;
+    o.lights = n;
+    const auto lights = bake(probe, o).lights;
+    Rgb before{};
+    for (const Light& l : lights)
+      for (int c = 0; c < 3; ++c) before[c] += l.rgb[c];
+    for (bool move : {false, true}) {
+      double shift = 1;
+      const auto held = refitIrradiance(ev, lights, &shift, RefitOptions{move, true});
+      const auto free = refitIrradiance(ev, lights, nullptr, RefitOptions{move, false});
+      Rgb after{};
+      for (const Light& l : held)
+        for (int c = 0; c < 3; ++c) {
+          after[c] += l.rgb[c];
+          EXPECT_GE(l.rgb[c], 0.0);
+        }
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(after[c], before[c], 1e-12 * before[c]) << n << " " << c;
+      EXPECT_LT(std::abs(shift), 1e-12);
+      const auto receivers = ev.fitReceivers(true);
+      EXPECT_LT(ev.fitError(receivers, held), ev.fitError(receivers, lights)) << n;
+      EXPECT_LE(ev.fitError(receivers, free), ev.fitError(receivers, held) * (1 + 1e-9)) << n;
+    }
+  }
+}
+
 TEST(Refit, MoreLightsThanItTakesAreBakedWithoutItSayingSoWhetherAskedOrChosen) {
   // One rule for the limit (bake.h): a count past kMaxRefitLights, asked (both cuts or one) or picked by a
   // tolerance, bakes without the refit, the result says it was not refit, and one note says why.
@@ -73,7 +105,7 @@ TEST(Refit, MovingDirectionsLowersItFurther) {
   o.lights = 16;
   auto lights = bake(probe, o).lights;
   auto colours = refitIrradiance(ev, lights);
-  auto moved = refitIrradiance(ev, lights, nullptr, true);
+  auto moved = refitIrradiance(ev, lights, nullptr, RefitOptions{.moveDirections = true});
   EXPECT_LT(ev.evaluate(moved).diffuse, ev.evaluate(colours).diffuse);
   for (const Light& l : moved) EXPECT_NEAR(l.direction.length(), 1.0, 1e-9);
 }

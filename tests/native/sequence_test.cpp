@@ -175,15 +175,21 @@ TEST(SequenceBaker, ADayFlickersAsTheWorldDoesAndEachFrameIsAsGoodAsASingleBake)
 }
 
 TEST(SequenceBaker, FinishedAsTheAddonsBakeEachFrameIsAsGoodAsItsSingleBakeAndTheSunKeepsItsLight) {
-  // Angles fitted to each frame's shadows and the refit of colours and directions (the add-on's recipe),
-  // against single bakes finished the same way (bakeEvaluated).
+  // Angles fitted to each frame's shadows and the refit of colours and directions (the add-on's recipe):
+  // with the energy free to move, against single bakes finished the same way (bakeEvaluated); with every
+  // frame's energy exact (the default), against each frame baked alone with it exact too.
   AccuracyOptions a;
   a.sunAngles = SunAngles::Fit, a.refit = true, a.moveDirections = true, a.evaluatorWidth = 512;
   a.effects = kDiffuse | kShadow;
-  SequenceBaker baker(options(16), {}, SequenceFinish{SunAngles::Fit, SunCones::Free, true, true, 512});
-  double held[2] = {0, 0}, single[2] = {0, 0}, plain[2] = {0, 0};
+  const SequenceFinish finish{SunAngles::Fit, SunCones::Free, true, true, 512};
+  SequenceOptions free, exactAlone;
+  free.exactEnergy = false, exactAlone.independent = true;
+  SequenceBaker baker(options(16), free, finish), exact(options(16), {}, finish),
+      alone(options(16), exactAlone, finish);
+  double held[2] = {0, 0}, single[2] = {0, 0}, plain[2] = {0, 0}, kept[2] = {0, 0}, keptAlone[2] = {0, 0};
   SequenceBaker unfinished(options(16), {});
   int lastBrightest = -1, changes = 0;
+  double shift = 0;
   const int frames = 8;
   for (int f = 0; f < frames; ++f) {
     auto p = dayFrame(f, frames);
@@ -191,23 +197,40 @@ TEST(SequenceBaker, FinishedAsTheAddonsBakeEachFrameIsAsGoodAsItsSingleBakeAndTh
     ASSERT_EQ(frame.lights.size(), 16u);
     EXPECT_TRUE(std::isfinite(frame.energyShift));
     EXPECT_LT(std::abs(frame.energyShift), 0.2) << f;
+    shift = std::max(shift, std::abs(frame.energyShift));
     const EffectErrors mine = judgeFrame(p.probe, frame.lights).errors;
-    const EffectErrors alone = judgeFrame(p.probe, bakeEvaluated(p.probe, options(16), a).bake.lights).errors;
+    const EffectErrors single1 =
+        judgeFrame(p.probe, bakeEvaluated(p.probe, options(16), a).bake.lights).errors;
     const EffectErrors asCut = judgeFrame(p.probe, unfinished.add(p.probe).lights).errors;
-    held[0] += mine.diffuse, held[1] += mine.shadow, single[0] += alone.diffuse, single[1] += alone.shadow;
+    held[0] += mine.diffuse, held[1] += mine.shadow, single[0] += single1.diffuse,
+        single[1] += single1.shadow;
     plain[0] += asCut.diffuse, plain[1] += asCut.shadow;
     changes += f > 0 && brightest(frame.lights) != lastBrightest;
     lastBrightest = brightest(frame.lights);
     for (const Light& l : frame.lights) EXPECT_GE(l.angle, 0);
+    // Energy exact: the lights sum to the frame's probe, channel by channel.
+    const SequenceFrame e = exact.add(p.probe), e1 = alone.add(p.probe);
+    EXPECT_LT(std::abs(e.energyShift), 1e-12) << f;
+    for (int c = 0; c < 3; ++c) {
+      double sum = 0;
+      for (const Light& l : e.lights) sum += l.rgb[c];
+      EXPECT_NEAR(sum, e.totalRgb[c], 1e-9 * e.totalRgb[c]) << f << " " << c;
+    }
+    const EffectErrors k = judgeFrame(p.probe, e.lights).errors, k1 = judgeFrame(p.probe, e1.lights).errors;
+    kept[0] += k.diffuse, kept[1] += k.shadow, keptAlone[0] += k1.diffuse, keptAlone[1] += k1.shadow;
   }
   std::printf(
       "finished day of %d frames: diffuse %.4f (single bakes %.4f, unfinished %.4f), shadow %.4f "
-      "(%.4f, %.4f)\n",
+      "(%.4f, %.4f), energy shift up to %.4f; energy exact: diffuse %.4f (alone %.4f), shadow %.4f (%.4f)\n",
       frames, held[0] / frames, single[0] / frames, plain[0] / frames, held[1] / frames, single[1] / frames,
-      plain[1] / frames);
+      plain[1] / frames, shift, kept[0] / frames, keptAlone[0] / frames, kept[1] / frames,
+      keptAlone[1] / frames);
   EXPECT_LT(held[0], 1.2 * single[0]);
   EXPECT_LT(held[1], 1.2 * single[1]);
   EXPECT_LT(held[0] + held[1], plain[0] + plain[1]);  // finishing pays
+  EXPECT_LT(kept[0], 1.2 * keptAlone[0]);
+  EXPECT_LT(kept[1], 1.2 * keptAlone[1]);
+  EXPECT_LT(kept[0] + kept[1], plain[0] + plain[1]);  // with the energy held too
   EXPECT_LE(changes, 1);
 }
 

@@ -47,20 +47,26 @@ def test_frames_keep_their_lights_and_their_light():
     assert len(sun_ids) == 1 and baker.frames == 12
 
 
-def test_frames_finished_as_a_single_bake_report_their_energy_shift():
-    # The add-on's recipe: angles fitted to each frame's shadows, colours and directions refit.
-    finished = pl.SequenceBaker(lights=8, sun_angles="fit", refit=True, move_directions=True, evaluate=True)
+def test_frames_finished_as_a_single_bake_keep_their_energy_or_report_its_shift():
+    # The add-on's recipe: angles fitted to each frame's shadows, colours and directions refit; every frame's
+    # energy exact (the default), or free to move as a single bake's refit moves it (exact_energy=False).
+    recipe = dict(lights=8, sun_angles="fit", refit=True, move_directions=True, evaluate=True)
+    finished, free = pl.SequenceBaker(**recipe), pl.SequenceBaker(exact_energy=False, **recipe)
     plain = pl.SequenceBaker(lights=8, evaluate=True)
     errors = [0.0, 0.0]
     for f, (pixels, _) in enumerate(day(6)):
-        a, b = finished.add(pixels, frame=f + 1), plain.add(pixels, frame=f + 1)
-        shift = a["energy_shift"]
-        assert b["energy_shift"] == 0.0 and abs(shift) < 0.2
-        assert math.isclose(a["lights"]["rgb"].sum(), sum(a["total_rgb"]) * (1 + shift), rel_tol=1e-9)
+        a, b, c = finished.add(pixels, frame=f + 1), plain.add(pixels, frame=f + 1), free.add(pixels, frame=f + 1)
+        assert b["energy_shift"] == 0.0 and abs(a["energy_shift"]) < 1e-12
+        assert np.allclose(a["lights"]["rgb"].sum(axis=0), a["total_rgb"], rtol=1e-9)
+        shift = c["energy_shift"]
+        assert abs(shift) < 0.2
+        assert math.isclose(c["lights"]["rgb"].sum(), sum(c["total_rgb"]) * (1 + shift), rel_tol=1e-9)
         assert np.all(a["lights"]["angle"] >= 0) and np.all(np.isfinite(a["lights"]["direction"]))
         errors[0] += a["evaluation"]["shadow"]
         errors[1] += b["evaluation"]["shadow"]
     assert errors[0] < errors[1], errors  # the fitted angles and the refit pay on the shadows
+    with pytest.raises(ValueError, match="exact_energy takes on or off"):
+        pl.SequenceBaker(exact_energy="maybe")
 
 
 @pytest.mark.skipif(pl.build != "full", reason="runs the CLI: the full module's")

@@ -18,17 +18,25 @@ namespace probelights {
 // dark is placed anew (placeDarkLights) and the colours solved again; its rect stays the region it was made
 // from.
 inline constexpr std::size_t kMaxRefitLights = 256;
-// moveDirections: also moves each light's direction (coordinate descent: steps of 4, 2, 1 and 0.5 degrees
-// along two tangent axes, kept when the fit improves; three rounds up to 16 lights, two above, each followed
-// by the NNLS colours): lower diffuse error at few lights, shadows unchanged or better
-// (docs/results/shadows.md).
+// How the refit goes beyond the colours.
+struct RefitOptions {
+  // Also moves each light's direction (coordinate descent: steps of 4, 2, 1 and 0.5 degrees along two
+  // tangent axes, kept when the fit improves; three rounds up to 16 lights, two above, each followed by the
+  // NNLS colours): lower diffuse error at few lights, shadows unchanged or better (docs/results/shadows.md).
+  bool moveDirections = false;
+  // Holds the lights' sum per channel (each channel's sum of rgb, the probe's integral for cut lights) where
+  // it is positive: the colours solved with that sum weighted far above the receivers, then scaled to it
+  // exactly. The fit then cannot trade energy for its receivers (energyShift is rounding).
+  bool keepEnergy = false;
+};
 std::vector<Light> refitIrradiance(const Evaluator& evaluator, const std::vector<Light>& lights,
-                                   double* energyShift = nullptr, bool moveDirections = false);
+                                   double* energyShift = nullptr, const RefitOptions& options = {});
 
 // The colour solve alone (refitIrradiance's first step): each light's non-negative colour, per channel, so
-// the lights as they are fit `receivers` best; no light is placed anew.
+// the lights as they are fit `receivers` best; no light is placed anew. With `total`: each channel's sum
+// held to it where it is positive (RefitOptions::keepEnergy).
 void solveColours(const Evaluator& evaluator, const std::vector<Receiver>& receivers,
-                  std::vector<Light>& lights);
+                  std::vector<Light>& lights, const Rgb* total = nullptr);
 
 // Lights the colour solve left dark (luminance 0: their region's light is better carried by their
 // neighbours, as on a few probes here) are placed anew where the fit

@@ -36,14 +36,20 @@ struct SequenceOptions {
   // Every frame baked alone, its lights in the bake's order, as baking each frame apart gives: what the
   // sequence is measured against.
   bool independent = false;
+  // With the refit (SequenceFinish): each frame's lights keep its probe's integral, channel by channel (the
+  // refit holds their sum, RefitOptions::keepEnergy), so a world's brightness is followed exactly from frame
+  // to frame; off, each frame trades its energy for diffuse light and shadows as a single bake's refit does
+  // (up to a few percent, SequenceFrame::energyShift), at a lower per-frame error
+  // (docs/results/sequences.md).
+  bool exactEnergy = true;
 };
 inline constexpr double kMaxSmoothness = 100;
 
 // How each frame's lights are finished once they are matched (finish_lights.h): spread or point angles alone;
 // or, with an evaluator of the frame (evaluate.h, diffuse and shadow at evaluatorWidth), angles fitted to the
 // frame's shadows and the irradiance refit of colours (and directions), as the add-on's single bake finishes
-// its lights. Only lit lights are finished: a dark id stays dark. The refit trades the exact energy for the
-// lights' diffuse light and shadows (SequenceFrame::energyShift); without it every frame is exact.
+// its lights. Only lit lights are finished: a dark id stays dark. The refit keeps every frame's energy exact
+// unless SequenceOptions::exactEnergy is off (then SequenceFrame::energyShift says what it traded).
 struct SequenceFinish {
   SunAngles angles = SunAngles::Spread;
   SunCones cones = SunCones::Free;
@@ -64,7 +70,8 @@ struct SequenceFrame {
   // How far the lights moved since the previous frame: the mean angle (radians) weighted by energy, over
   // the lights lit in both; 0 for the first frame.
   double motion = 0;
-  double energyShift = 0;  // with the refit: the sum of the lights' channels over the probe's - 1 (else 0)
+  double energyShift =
+      0;  // the sum of the lights' channels over the probe's - 1 (0 but with exactEnergy off)
   std::vector<Note> notes;
   BakeTimings timings;
 };
