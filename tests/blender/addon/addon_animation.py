@@ -4,6 +4,7 @@ on every frame; each frame's lamps the core's sequence bake of that frame's prob
 import math
 import os
 import tempfile
+import threading
 
 import bpy
 import numpy as np
@@ -127,6 +128,15 @@ def test_a_bake_of_an_image_sequence_reads_the_scenes_frame_and_restore_takes_th
         node.image_user.frame_duration = FRAMES + 5  # images past the last file
         _expect_refusal("has no file", frame_start=10, frame_end=FRAMES + 3)
         _expect_refusal("ends before it starts", frame_start=5, frame_end=4)
+        # A frame the core refuses while the next one is read (frames bake on a thread beside the reading): its
+        # number and the core's line, nothing changed and no thread left behind.
+        node.image_user.frame_duration = FRAMES
+        write_hdr(os.path.join(folder, "sky_0006.hdr"), np.full((H // 2, W // 2, 3), 0.05, np.float32))
+        bake(count=4)
+        before = sorted(o.name for o in bpy.data.objects)
+        _expect_refusal("frame 6: frame 6 is 32x16 latlong", frame_start=1, frame_end=FRAMES)
+        assert sorted(o.name for o in bpy.data.objects) == before and not bpy.data.actions
+        assert not [t.name for t in threading.enumerate() if t.name.startswith("probe_lights_bake")]
     harness.empty_scene()
     harness.env_world(harness.float_image("still", np.ones((8, 16, 3))))
     _expect_refusal("does not change over time")
