@@ -114,10 +114,11 @@ class FrameSource:
             self._render = None
 
 
-def sequence_options(scene, settings, smoothness):
+def sequence_options(scene, settings, smoothness, exact_energy=True):
     """The core's SequenceBaker options for the panel's settings: each frame finished as a single bake is (the
-    angles as Shadows says, the refit of colours and directions with Refit, judged at 512 wide), its cuts by
-    variance or median cut (Auto and Both cut by variance: a sequence keeps one cut)."""
+    angles as Shadows says, the refit of colours and directions with Refit, judged at 512 wide; the refit keeping
+    every frame's energy exact unless `exact_energy` is off), its cuts by variance or median cut (Auto and Both cut
+    by variance: a sequence keeps one cut)."""
     method = cut_method(settings.method)
     if method not in ("variance", "median-cut"):
         raise ProbeError("Bake animation cuts by variance or median cut: set Method to one of them")
@@ -127,7 +128,7 @@ def sequence_options(scene, settings, smoothness):
             "sun_cones": sun_cones(scene.render.engine, bpy.app.version),
             "sun_profile": sun_profile(bpy.app.version), "refit": bool(settings.refit),
             "move_directions": bool(settings.refit), "evaluator_width": 512, "nonfinite": settings.non_finite,
-            "smoothness": smoothness}
+            "smoothness": smoothness, "exact_energy": bool(exact_energy)}
 
 
 def frame_range(scene, start, end):
@@ -191,11 +192,11 @@ class AnimationBake:
     """A sequence bake in steps (an operator's timer runs one frame a step; Esc stops between steps): nothing in
     the scene changes until finish()."""
 
-    def __init__(self, context, settings, smoothness=0.1, start=0, end=0, render_width=None):
+    def __init__(self, context, settings, smoothness=0.1, start=0, end=0, render_width=None, exact_energy=True):
         scene = context.scene
         self.settings = settings
         self.first, self.last = frame_range(scene, start, end)
-        self.options = sequence_options(scene, settings, smoothness)
+        self.options = sequence_options(scene, settings, smoothness, exact_energy)
         m = native.module()
         try:
             self.baker = m.SequenceBaker(**self.options)

@@ -98,6 +98,17 @@ def test_an_image_sequence_bakes_into_keyed_lamps_that_keep_their_ids():
             spot = _check_frames(lamps, frames, 2.0)
             print("  refit %s: %d lamps keyed on %d frames; the spot kept lamp %d; energy shift up to %.2f %%" % (
                 refit, len(lamps), FRAMES, spot, 100 * max(abs(f["energy_shift"]) for f in frames)))
+        # Exact energy off: each frame's refit trades energy as a single bake's does, as the core's frames say.
+        free_lamps = _bake_animation(count=6, exact_energy=False)
+        free = _probelights.SequenceBaker(**animation.sequence_options(scene, scene.probe_lights, 0.1, False))
+        shifted = [free.add(read(node, f), frame=f) for f in (1, 2)]
+        assert max(abs(f["energy_shift"]) for f in shifted) > 1e-4
+        scene.frame_set(2)
+        total = sum(irradiance(lamp) for lamp in free_lamps).sum()
+        assert abs(total - 2.0 * sum(shifted[1]["total_rgb"]) * (1 + shifted[1]["energy_shift"])) < 1e-4 * total
+        print("  exact energy off: frame 2's lamps carry %+.2f %% of its light, as the core's frame" % (
+            100 * shifted[1]["energy_shift"]))
+        lamps = _bake_animation(count=6)
     # The world's strength is still followed, on every frame.
     node.id_data.nodes["Background"].inputs["Strength"].default_value = 3.0
     scene.frame_set(7)
