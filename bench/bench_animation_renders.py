@@ -1,5 +1,6 @@
-"""Flicker in Cycles renders: the sphere over a plane lit by an animated world, by its Bake animation lamps and by
-each frame's own single bake, frame by frame (docs/results/sequences.md, "Renders"):
+"""Flicker in Cycles renders: the sphere over a plane lit by an animated world, by its Bake animation lamps (Refit
+on with every frame's energy exact, the default; Refit on with Exact energy off; Refit off) and by each frame's own
+single bake, frame by frame (docs/results/sequences.md, "Renders"):
 
   tests/blender/run.sh ~/.cache/probelights/bpy-4.5.15/bin/python bench/bench_animation_renders.py \\
       build/probe_lights-0.1.0-linux_x64.zip ../shared
@@ -87,10 +88,10 @@ with tempfile.TemporaryDirectory() as tmp:
     world_lit = render_frames()
     lit = render_scene.lit_blocks(world_lit[0])
     rows = []
-    for refit in (True, False):
-        assert bpy.ops.probe_lights.bake_animation("EXEC_DEFAULT", count=LIGHTS, refit=refit) == {"FINISHED"}
-        rows.append(("Bake animation, Refit %s" % ("on (default)" if refit else "off"),
-                     measure(world_lit, lit, render_frames())))
+    for name, settings in (("Refit on (default)", {}), ("Refit on, Exact energy off", {"exact_energy": False}),
+                           ("Refit off", {"refit": False})):
+        assert bpy.ops.probe_lights.bake_animation("EXEC_DEFAULT", count=LIGHTS, **settings) == {"FINISHED"}
+        rows.append(("Bake animation, " + name, measure(world_lit, lit, render_frames())))
     single = []
     for f in range(1, FRAMES + 1):
         scene.frame_set(f)

@@ -15,7 +15,8 @@ response's change from frame to frame over the world-lit response's own, on the 
 energy-weighted motion a frame (degrees, id to id: what a lamp's keyframes move), the frames cut afresh, and
 the bake's milliseconds a frame (reading excluded). "Finished" rows finish every frame as the add-on's single
 bake does (angles fitted to the frame's shadows, colours and directions refit: --sun-angles fit --refit
---refit-directions). Needs numpy.
+--refit-directions), every frame's energy exact (the default) or free to move as a single bake's refit moves it
+(--exact-energy off). Needs numpy.
 """
 import argparse
 import json
@@ -84,7 +85,10 @@ def main():
                                      ("smoothness 0.1 (default)", []), ("smoothness 0.5", ["--smoothness", "0.5"]),
                                      ("smoothness 2", ["--smoothness", "2"]),
                                      ("finished, each frame alone", ["--independent"] + finished),
-                                     ("finished, smoothness 0.1", finished)):
+                                     ("finished, smoothness 0.1", finished),
+                                     ("finished, energy free, each frame alone",
+                                      ["--independent", "--exact-energy", "off"] + finished),
+                                     ("finished, energy free, smoothness 0.1", ["--exact-energy", "off"] + finished)):
                     out = folder / "out.json"
                     subprocess.run([args.bin, "bake-sequence", str(folder / (name + "_####.pfm")), "--lights",
                                     str(lights), "--evaluate", "-q", "-o", str(out)] + extra, check=True,
