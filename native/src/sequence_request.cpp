@@ -49,9 +49,8 @@ std::vector<SequenceOption> makeSequenceOptions() {
        [](R& r, S o, S v) { r.sequence.independent = parseSwitch(o, v); },
        [](const R& r) { return onOff(r.sequence.independent); }, ""},
       {"exact_energy", "on|off",
-       "with the refit, every frame's lights sum to its probe's integral (off: each frame's refit may trade "
-       "a "
-       "few percent of it for diffuse light and shadows, as a single bake's does)",
+       "with the refit, every frame's lights sum to its probe's integral (off: each frame's refit may "
+       "trade a few percent of it for diffuse light and shadows, as a single bake's does)",
        [](R& r, S o, S v) { r.sequence.exactEnergy = parseSwitch(o, v); },
        [](const R& r) { return onOff(r.sequence.exactEnergy); }, ""},
       {"frames", "A-B", "the first and last frame (every one must exist; default: every file of the pattern)",

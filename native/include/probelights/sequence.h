@@ -70,8 +70,8 @@ struct SequenceFrame {
   // How far the lights moved since the previous frame: the mean angle (radians) weighted by energy, over
   // the lights lit in both; 0 for the first frame.
   double motion = 0;
-  double energyShift =
-      0;  // the sum of the lights' channels over the probe's - 1 (0 but with exactEnergy off)
+  // The sum of the lights' channels over the probe's - 1: rounding, but with exactEnergy off and the refit.
+  double energyShift = 0;
   std::vector<Note> notes;
   BakeTimings timings;
 };
