@@ -34,7 +34,8 @@ Lights = dict[str, npt.NDArray[np.float64]]
 
 class SequenceBaker:
     """Bakes the frames of an animated world, given one by one, into the same N lights each frame, each keeping
-    its id. options: the sequence's (smoothness, frames) and the bake's lights, method (variance or median-cut),
+    its id. options: the sequence's (smoothness, exact_energy: the refit keeps every frame's energy exact unless
+    False, frames) and the bake's lights, method (variance or median-cut),
     centroid, resolution, horizon, sun_angles (fit, spread or points), sun_cones, sun_profile, refit,
     move_directions, evaluate, evaluator_width, nonfinite; help(probelights.SequenceBaker) lists them with
     their defaults."""
@@ -43,7 +44,8 @@ class SequenceBaker:
     def __init__(self, **options: Any) -> None: ...
     def add(self, pixels: Pixels, *, projection: str = "latlong", frame: int = 0) -> dict[str, Any]:
         """Bake the next frame (a float32 H x W x C array like bake()'s, every frame of one size): frame, source,
-        recut, motion (radians), spread, fresh_spread, energy_shift (the refit's; else 0), lights (id,
+        recut, motion (radians), spread, fresh_spread, energy_shift (the refit's with exact_energy=False; else
+        rounding), lights (id,
         direction, rgb, ... as numpy arrays; row k is light k in every frame), total_rgb, timings_ms, notes,
         and evaluation (diffuse, shadow) when evaluate=True."""
         ...
