@@ -116,9 +116,9 @@ class FrameSource:
 
 def sequence_options(scene, settings, smoothness, exact_energy=True):
     """The core's SequenceBaker options for the panel's settings: each frame finished as a single bake is (the
-    angles as Shadows says, the refit of colours and directions with Refit, judged at 512 wide; the refit keeping
-    every frame's energy exact unless `exact_energy` is off), its cuts by variance or median cut (Auto and Both cut
-    by variance: a sequence keeps one cut)."""
+    angles as Shadows says, the refit of colours and directions with Refit, at the core's sequence price; the
+    refit keeping every frame's energy exact unless `exact_energy` is off), its cuts by variance or median cut
+    (Auto and Both cut by variance: a sequence keeps one cut)."""
     method = cut_method(settings.method)
     if method not in ("variance", "median-cut"):
         raise ProbeError("Bake animation cuts by variance or median cut: set Method to one of them")
@@ -127,7 +127,7 @@ def sequence_options(scene, settings, smoothness, exact_energy=True):
             "sun_angles": NATIVE_SUN_ANGLES[settings.shadows] if soft else "points",
             "sun_cones": sun_cones(scene.render.engine, bpy.app.version),
             "sun_profile": sun_profile(bpy.app.version), "refit": bool(settings.refit),
-            "move_directions": bool(settings.refit), "evaluator_width": 512, "nonfinite": settings.non_finite,
+            "move_directions": bool(settings.refit), "nonfinite": settings.non_finite,
             "smoothness": smoothness, "exact_energy": bool(exact_energy)}
 
 

@@ -164,7 +164,7 @@ Evaluator::Evaluator(const Probe& probe, const MomentTable* grid, Effects effect
   normals_ = fibonacciSphere(256);
   if (effects & kDiffuse) {
     // Both sets' truth in one pass (the samples binned once).
-    if (options.forRefit) fitNormals_ = fibonacciSphere(1024);
+    if (options.forRefit) fitNormals_ = fibonacciSphere(std::max(1, options.fitNormals));
     std::vector<Vec3> all = normals_;
     all.insert(all.end(), fitNormals_.begin(), fitNormals_.end());
     const std::vector<Rgb> truth = truth::irradianceTruthAt(directions_, radiance_, all);

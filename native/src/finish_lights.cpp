@@ -15,7 +15,7 @@ std::vector<Light> finishAngled(const Evaluator& evaluator, std::vector<Light> l
     std::vector<Light> moved = refitIrradiance(evaluator, lights, nullptr, finish.refitOptions());
     keepSunCones(evaluator.sunCones(), moved);  // a moved light keeps its angle, which may now cross
     if (fitted) {
-      applySunAngles(finish.angles, &evaluator, moved, true);
+      applySunAngles(finish.angles, &evaluator, moved, true, finish.refitAngleRounds);
       moved = refitIrradiance(evaluator, moved, nullptr, RefitOptions{.keepEnergy = finish.keepEnergy});
     }
     const std::vector<Receiver> receivers = evaluator.fitReceivers(true);

@@ -150,8 +150,8 @@ bool placeDarkLights(const Evaluator& evaluator, const std::vector<Receiver>& re
 
 std::vector<Light> refitIrradiance(const Evaluator& evaluator, const std::vector<Light>& lights,
                                    double* energyShift, const RefitOptions& options) {
-  // Fitted on the evaluator's fit receivers (1024 normals, and 1024 ground points with shadows), not the
-  // points the error is measured on, so the error of a refit is not flattered.
+  // Fitted on the evaluator's fit receivers (its fit normals, 1024 unless asked, and 1024 ground points with
+  // shadows), not the points the error is measured on, so the error of a refit is not flattered.
   if (evaluator.fitNormals().empty())
     throw Error("the irradiance refit needs an evaluator made for it (diffuse, forRefit)");
   const std::vector<Receiver> receivers = evaluator.fitReceivers(true);
@@ -170,7 +170,7 @@ std::vector<Light> refitIrradiance(const Evaluator& evaluator, const std::vector
   // Three rounds up to 16 lights, two above: with many suns a third round changes the errors by nothing
   // measurable and costs time; with few it still lowers them (docs/decisions.md).
   constexpr int kThreeRoundsUpTo = 16;
-  const int rounds = n <= kThreeRoundsUpTo ? 3 : 2;
+  const int rounds = options.moveRounds > 0 ? options.moveRounds : n <= kThreeRoundsUpTo ? 3 : 2;
   for (int round = 0; options.moveDirections && round < rounds; ++round) {
     moveDirections(evaluator, receivers, out);
     solveColours(evaluator, receivers, out, held);

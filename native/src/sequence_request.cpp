@@ -64,6 +64,19 @@ std::vector<SequenceOption> makeSequenceOptions() {
        {"lights", "method", "centroid", "resolution", "horizon", "sun_angles", "sun_cones", "sun_profile",
         "refit", "move_directions", "evaluate", "evaluator_width", "nonfinite"})
     table.push_back(judgingOption<SequenceRequest>(name));
+  for (SequenceOption& o : table)
+    if (o.name == "evaluator_width")
+      o.help = "the probe's width in pixels the errors are judged at (wider is grouped)";
+  table.push_back(
+      {"fit_width", "W",
+       "the probe's width in pixels each frame's angles and refit are fitted at (wider: slower, and no "
+       "closer on the sequences measured)",
+       [](R& r, S o, S v) {
+         const int w = parseCount(o, v);
+         if (w < 1) throw Error(o + " takes a width of at least 1 pixel, got '" + v + "'");
+         r.fitWidth = w;
+       },
+       [](const R& r) { return std::to_string(r.fitWidth); }, ""});
   return table;
 }
 
@@ -78,7 +91,7 @@ SequenceBaker makeSequenceBaker(const SequenceRequest& request) {
   const AccuracyOptions& a = request.judging.accuracy;
   return SequenceBaker(
       request.judging.bake, request.sequence,
-      SequenceFinish{a.sunAngles, a.sunCones, a.refit, a.moveDirections, a.evaluatorWidth, a.sunProfile});
+      SequenceFinish{a.sunAngles, a.sunCones, a.refit, a.moveDirections, request.fitWidth, a.sunProfile});
 }
 
 std::vector<SequenceFile> sequenceFiles(const std::string& pattern,

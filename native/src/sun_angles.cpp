@@ -23,7 +23,7 @@ constexpr double kSmallest =
 std::string toString(SunAngles angles) { return std::string(nameOf(kSunAngles, angles)); }
 SunAngles parseSunAngles(const std::string& name) { return parseName(kSunAngles, "sun angles", name); }
 
-void fitSunAngles(const Evaluator& evaluator, std::vector<Light>& lights, bool refitReceivers) {
+void fitSunAngles(const Evaluator& evaluator, std::vector<Light>& lights, bool refitReceivers, int rounds) {
   if (!(evaluator.effects() & kShadow)) throw Error("fitting sun angles needs the shadow effect evaluated");
   // The fit receivers (evaluate.h): ground points under the sphere and normals, each set weighted so the
   // objective is shadow error^2 + diffuse error^2 (on points the errors are not measured on).
@@ -42,7 +42,7 @@ void fitSunAngles(const Evaluator& evaluator, std::vector<Light>& lights, bool r
   // its spread's angle (a 1024-light fit would cost seconds for nothing visible).
   if (order.size() > kMaxFitted) order.resize(kMaxFitted);
   TrialFit fit(evaluator, receivers, lights, order);
-  for (int round = 0; round < 2; ++round)
+  for (int round = 0; round < rounds; ++round)
     for (std::size_t i : order) {
       Light& light = lights[i];
       if (!(luminance(light.rgb) > 0)) continue;
@@ -76,7 +76,7 @@ void keepSunCones(SunCones cones, std::vector<Light>& lights) {
 }
 
 bool applySunAngles(SunAngles choice, const Evaluator* evaluator, std::vector<Light>& lights,
-                    bool refitReceivers) {
+                    bool refitReceivers, int rounds) {
   switch (choice) {
     case SunAngles::Points:
       for (Light& l : lights) l.angle = 0;
@@ -89,7 +89,7 @@ bool applySunAngles(SunAngles choice, const Evaluator* evaluator, std::vector<Li
         if (evaluator) keepSunCones(evaluator->sunCones(), lights);
         return false;
       }
-      fitSunAngles(*evaluator, lights, refitReceivers);
+      fitSunAngles(*evaluator, lights, refitReceivers, rounds);
       return true;
   }
   return false;

@@ -181,7 +181,7 @@ TEST(SequenceBaker, FinishedAsTheAddonsBakeEachFrameIsAsGoodAsItsSingleBakeAndTh
   AccuracyOptions a;
   a.sunAngles = SunAngles::Fit, a.refit = true, a.moveDirections = true, a.evaluatorWidth = 512;
   a.effects = kDiffuse | kShadow;
-  const SequenceFinish finish{SunAngles::Fit, SunCones::Free, true, true, 512};
+  const SequenceFinish finish{SunAngles::Fit, SunCones::Free, true, true};  // its sequence price (256 wide)
   SequenceOptions free, exactAlone;
   free.exactEnergy = false, exactAlone.independent = true;
   SequenceBaker baker(options(16), free, finish), exact(options(16), {}, finish),

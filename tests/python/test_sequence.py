@@ -69,6 +69,17 @@ def test_frames_finished_as_a_single_bake_keep_their_energy_or_report_its_shift(
         pl.SequenceBaker(exact_energy="maybe")
 
 
+def test_the_width_frames_are_fitted_at_reaches_the_core():
+    # Each frame is finished at fit_width (256 by default, a sequence's price) and judged at evaluator_width.
+    recipe = dict(lights=8, sun_angles="fit", refit=True, move_directions=True)
+    pixels = next(day(1))[0]
+    default = pl.SequenceBaker(**recipe).add(pixels, frame=1)["lights"]
+    narrow = pl.SequenceBaker(fit_width=32, **recipe).add(pixels, frame=1)["lights"]
+    assert not np.array_equal(default["rgb"], narrow["rgb"])
+    with pytest.raises(ValueError, match="fit_width takes a width of at least 1 pixel"):
+        pl.SequenceBaker(fit_width=0)
+
+
 @pytest.mark.skipif(pl.build != "full", reason="runs the CLI: the full module's")
 def test_the_module_bakes_the_frames_as_the_command_does(tmp_path):
     cli = os.path.join(BUILD, "bin", "probelights")

@@ -69,9 +69,10 @@ struct Receiver {
 struct EvaluatorOptions {
   int maxWidth =
       2048;  // probe samples: pixels up to this width, cells of whole pixels beyond (exact rgb sums)
-  bool forRefit = false;                     // also the 1024 fit normals the irradiance refit needs
+  bool forRefit = false;                     // also the fit normals the irradiance refit needs
   SunProfile sunProfile = SunProfile::Cone;  // how the renderer spreads a sun's light over its angle (cone.h)
   SunCones sunCones = SunCones::Free;        // how wide a fitted cone may be (cone.h)
+  int fitNormals = 1024;                     // with forRefit, how many (a Fibonacci sphere)
 };
 
 class Evaluator {

@@ -17,9 +17,12 @@ struct FinishOptions {
   bool refit = false;           // up to kMaxRefitLights lights: more are finished without it
   bool moveDirections = false;  // the refit also moves the lights' directions
   bool keepEnergy = false;      // the refit holds the lights' sum per channel (RefitOptions)
+  int moveRounds = 0;           // RefitOptions
+  // Rounds of the angle fit after the moves (fitSunAngles), which starts from the angles fitted before them.
+  int refitAngleRounds = 2;
   // Whether `lights` lights are refit: the one rule of the refit's limit (a bake says so in a note).
   bool refits(std::size_t lights) const { return refit && lights <= kMaxRefitLights; }
-  RefitOptions refitOptions() const { return {moveDirections, keepEnergy}; }
+  RefitOptions refitOptions() const { return {moveDirections, keepEnergy, moveRounds}; }
 };
 
 // The sun angles, then the refit (colours, and directions if asked); with both, the colours are solved again

@@ -11,12 +11,12 @@ namespace probelights {
 
 // Irradiance-exact intensities: keeps each light's direction and re-solves its non-negative colour, per
 // channel, by non-negative least squares (Lawson & Hanson 1974) so the lights' diffuse irradiance matches the
-// probe's on the evaluator's fit receivers: its 1024 fit normals and, with shadows, its 1024 refit ground
-// points (Evaluator::fitReceivers(true)). Returns the refit lights; `energyShift` (if given) gets
-// sum(new) / sum(old) - 1. At most kMaxRefitLights lights (the active-set solve grows with the cube of the
-// count; beyond it the plain lights are already within a fraction of a percent). A light the solve leaves
-// dark is placed anew (placeDarkLights) and the colours solved again; its rect stays the region it was made
-// from.
+// probe's on the evaluator's fit receivers: its fit normals (1024 unless asked) and, with shadows, its 1024
+// refit ground points (Evaluator::fitReceivers(true)). Returns the refit lights; `energyShift` (if given)
+// gets sum(new) / sum(old) - 1. At most kMaxRefitLights lights (the active-set solve grows with the cube of
+// the count; beyond it the plain lights are already within a fraction of a percent). A light the solve
+// leaves dark is placed anew (placeDarkLights) and the colours solved again; its rect stays the region it
+// was made from.
 inline constexpr std::size_t kMaxRefitLights = 256;
 // How the refit goes beyond the colours.
 struct RefitOptions {
@@ -28,6 +28,8 @@ struct RefitOptions {
   // it is positive: the colours solved with that sum weighted far above the receivers, then scaled to it
   // exactly. The fit then cannot trade energy for its receivers (energyShift is rounding).
   bool keepEnergy = false;
+  // Rounds of moves; 0: three up to 16 lights, two above (the single bake's rule).
+  int moveRounds = 0;
 };
 std::vector<Light> refitIrradiance(const Evaluator& evaluator, const std::vector<Light>& lights,
                                    double* energyShift = nullptr, const RefitOptions& options = {});

@@ -25,13 +25,15 @@ SunAngles parseSunAngles(const std::string& name);  // throws Error naming the c
 // quarter-octave either side of the best. Minimizes shadow error^2 + diffuse error^2 with colours and
 // directions fixed. Needs an evaluator with kShadow (throws Error otherwise).
 // refitReceivers: fitted on the refit's 1024 ground points instead (Evaluator::fitReceivers), as the refit's
-// own angle fits are.
-void fitSunAngles(const Evaluator& evaluator, std::vector<Light>& lights, bool refitReceivers = false);
+// own angle fits are. rounds: of the descent (two; one where the lights' angles are already fitted, as after
+// the refit's moves: finish_lights.h).
+void fitSunAngles(const Evaluator& evaluator, std::vector<Light>& lights, bool refitReceivers = false,
+                  int rounds = 2);
 
 // The angles `choice` asks for: points sets 0, spread leaves them as made, fit calls fitSunAngles when the
 // evaluator (may be null) has shadows. Returns whether the angles were fitted.
 bool applySunAngles(SunAngles choice, const Evaluator* evaluator, std::vector<Light>& lights,
-                    bool refitReceivers = false);
+                    bool refitReceivers = false, int rounds = 2);
 
 // With SunCones::AboveHorizon, each light's angle at most horizonAngle(direction) (cone.h); the evaluator's
 // sunCones() are kept so by fitSunAngles and applySunAngles, a bake without an evaluator calls this.
