@@ -105,8 +105,15 @@ SequenceBaker::SequenceBaker(const BakeOptions& options, SequenceOptions sequenc
         "ones) to " +
         std::to_string(static_cast<int>(kMaxSmoothness)) + "; got " + got);
   }
-  if (finish.evaluatorWidth < 1)
-    throw Error("the evaluator's width is at least 1 pixel, got " + std::to_string(finish.evaluatorWidth));
+  if (finish.evaluatorWidth < 0)
+    throw Error("the evaluator's width is at least 1 pixel (0: the default), got " +
+                std::to_string(finish.evaluatorWidth));
+  // Held to each frame's energy, the refit fits as well 256 wide as 512 (the day and the video at 64
+  // lights: shadow 0.327 % / 0.435 %, against 0.323 % / 0.441 % at 512 with the single bake's finish), in a
+  // third less time. Free to trade energy, it follows the coarser truths' errors: shadow 0.285 % on the day
+  // and 0.487 % on the video, against 0.234 % and 0.255 % at 512 (384: 0.245 %, 0.341 %). So the energy-free
+  // refit keeps 512.
+  if (finish_.evaluatorWidth == 0) finish_.evaluatorWidth = sequence.exactEnergy ? 256 : 512;
 }
 
 // One way to cut a frame: its partition, lights and ids, and how far the lights moved from the last frame.
@@ -268,13 +275,13 @@ void SequenceBaker::finishFrame(const Probe& probe, const MomentTable& table, Se
   FinishOptions how{finish_.angles, finish_.refit, finish_.moveDirections};
   how.keepEnergy = sequence_.exactEnergy;
   // A sequence pays its finish once a frame, so it is leaner than a single bake's: the evaluator 256 wide
-  // (SequenceFinish) with 512 fit normals (kSequenceFitNormals; the single bake's 1024), one round of moves
-  // past 16 lights (the single bake takes two) and one round of the angle fit after the moves (it starts from
-  // the angles fitted before them). On 48 frames of the day at 64 lights that took 83-96 ms a frame against
-  // 167-204, and every frame's errors judged at 512 wide stayed within 1.03x of the full finish's (0.151 % /
-  // 0.327 % against 0.144 % / 0.323 %; the studio and St. Peter's days alike; docs/results/sequences.md).
-  // Tried and dropped: one round of the first angle fit too (10 ms less, the studio's shadows 1.12x), and
-  // half the refit's ground points (St. Peter's shadows 1.19x).
+  // with exact energy (the constructor says why), 512 fit normals (kSequenceFitNormals; the single bake's
+  // 1024), one round of moves past 16 lights (the single bake takes two) and one round of the angle fit after
+  // the moves (it starts from the angles fitted before them). On 48 frames of the day at 64 lights that took
+  // 83-96 ms a frame against 167-204, and every frame's errors judged at 512 wide stayed within 1.05x of the
+  // full finish's (0.151 % / 0.327 % against 0.144 % / 0.323 %; the studio and St. Peter's days alike;
+  // docs/results/sequences.md). Tried and dropped: one round of the first angle fit too (10 ms less, the
+  // studio's shadows 1.12x), and half the refit's ground points (St. Peter's shadows 1.19x).
   how.refitAngleRounds = 1;
   if (lights.size() > 16) how.moveRounds = 1;
   if (finish_.refit && !how.refits(lights.size()))

@@ -35,10 +35,11 @@ Lights = dict[str, npt.NDArray[np.float64]]
 class SequenceBaker:
     """Bakes the frames of an animated world, given one by one, into the same N lights each frame, each keeping
     its id. options: the sequence's (smoothness, exact_energy: the refit keeps every frame's energy exact unless
-    False, frames, fit_width: the probe's width each frame is finished at, 256) and the bake's lights, method
-    (variance or median-cut), centroid, resolution, horizon, sun_angles (fit, spread or points), sun_cones,
-    sun_profile, refit, move_directions, evaluate, evaluator_width (the width evaluate's errors are judged at,
-    512), nonfinite; help(probelights.SequenceBaker) lists them with their defaults."""
+    False, frames, fit_width: the probe's width each frame is finished at, auto: 256 with exact energy, else
+    512) and the bake's lights, method (variance or median-cut), centroid, resolution, horizon, sun_angles (fit,
+    spread or points), sun_cones, sun_profile, refit, move_directions, evaluate, evaluator_width (the width
+    evaluate's errors are judged at, 512), nonfinite; help(probelights.SequenceBaker) lists them with their
+    defaults."""
     frames: int
     """How many frames were added."""
     def __init__(self, **options: Any) -> None: ...

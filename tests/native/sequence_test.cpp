@@ -181,7 +181,7 @@ TEST(SequenceBaker, FinishedAsTheAddonsBakeEachFrameIsAsGoodAsItsSingleBakeAndTh
   AccuracyOptions a;
   a.sunAngles = SunAngles::Fit, a.refit = true, a.moveDirections = true, a.evaluatorWidth = 512;
   a.effects = kDiffuse | kShadow;
-  const SequenceFinish finish{SunAngles::Fit, SunCones::Free, true, true};  // its sequence price (256 wide)
+  const SequenceFinish finish{SunAngles::Fit, SunCones::Free, true, true};  // at its sequence price
   SequenceOptions free, exactAlone;
   free.exactEnergy = false, exactAlone.independent = true;
   SequenceBaker baker(options(16), free, finish), exact(options(16), {}, finish),
@@ -312,7 +312,7 @@ TEST(SequenceBaker, AFrameOfAnotherSizeOrABadRequestIsRefused) {
   EXPECT_THROW(SequenceBaker(options(8), {-0.1}), Error);
   EXPECT_THROW(SequenceBaker(options(8), {std::numeric_limits<double>::infinity()}), Error);
   EXPECT_THROW(SequenceBaker(options(8), {std::nan("")}), Error);
-  EXPECT_THROW(SequenceBaker(options(8), {}, SequenceFinish{SunAngles::Fit, SunCones::Free, true, false, 0}),
+  EXPECT_THROW(SequenceBaker(options(8), {}, SequenceFinish{SunAngles::Fit, SunCones::Free, true, false, -1}),
                Error);
 }
 

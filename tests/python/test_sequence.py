@@ -70,13 +70,14 @@ def test_frames_finished_as_a_single_bake_keep_their_energy_or_report_its_shift(
 
 
 def test_the_width_frames_are_fitted_at_reaches_the_core():
-    # Each frame is finished at fit_width (256 by default, a sequence's price) and judged at evaluator_width.
+    # Each frame is finished at fit_width (auto: 256 with exact energy, a sequence's price) and judged at
+    # evaluator_width.
     recipe = dict(lights=8, sun_angles="fit", refit=True, move_directions=True)
     pixels = next(day(1))[0]
     default = pl.SequenceBaker(**recipe).add(pixels, frame=1)["lights"]
     narrow = pl.SequenceBaker(fit_width=32, **recipe).add(pixels, frame=1)["lights"]
     assert not np.array_equal(default["rgb"], narrow["rgb"])
-    with pytest.raises(ValueError, match="fit_width takes a width of at least 1 pixel"):
+    with pytest.raises(ValueError, match="fit_width takes auto or a width of at least 1 pixel"):
         pl.SequenceBaker(fit_width=0)
 
 

@@ -48,15 +48,16 @@ inline constexpr double kMaxSmoothness = 100;
 // How each frame's lights are finished once they are matched (finish_lights.h): spread or point angles alone;
 // or, with an evaluator of the frame (evaluate.h, diffuse and shadow at evaluatorWidth), angles fitted to the
 // frame's shadows and the irradiance refit of colours (and directions), as the add-on's single bake finishes
-// its lights, at a sequence's price: the evaluator 256 pixels wide (the single bake's: 512) with half its fit
-// normals, one round of moves past 16 lights and one of the angle fit after them (SequenceBaker::finishFrame
-// says why). Only lit lights are finished: a dark id stays dark. The refit keeps every frame's energy exact
-// unless SequenceOptions::exactEnergy is off (then SequenceFrame::energyShift says what it traded).
+// its lights, at a sequence's price: the evaluator 256 pixels wide with every frame's energy exact (the
+// single bake's and the energy-free refit's: 512) with half its fit normals, one round of moves past 16
+// lights and one of the angle fit after them (SequenceBaker::finishFrame says why). Only lit lights are
+// finished: a dark id stays dark. The refit keeps every frame's energy exact unless
+// SequenceOptions::exactEnergy is off (then SequenceFrame::energyShift says what it traded).
 struct SequenceFinish {
   SunAngles angles = SunAngles::Spread;
   SunCones cones = SunCones::Free;
   bool refit = false, moveDirections = false;  // up to kMaxRefitLights lights (more: a note, no refit)
-  int evaluatorWidth = 256;
+  int evaluatorWidth = 0;  // 0: 256 with SequenceOptions::exactEnergy, else 512 (SequenceBaker says why)
   SunProfile profile = SunProfile::Cone;
   bool evaluates() const { return refit || angles == SunAngles::Fit; }
 };

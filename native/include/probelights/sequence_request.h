@@ -20,9 +20,9 @@ struct SequenceRequest {
   BakeRequest judging = sequenceJudging();
   SequenceOptions sequence;
   std::optional<std::array<int, 2>> frames;  // first and last frame (every one must exist); none: every file
-  // The width each frame is finished at (SequenceFinish::evaluatorWidth); judging.accuracy.evaluatorWidth is
-  // the width evaluate's errors are judged at.
-  int fitWidth = SequenceFinish{}.evaluatorWidth;
+  // The width each frame is finished at (SequenceFinish::evaluatorWidth; 0: its default, 256 with exact
+  // energy, else 512); judging.accuracy.evaluatorWidth is the width evaluate's errors are judged at.
+  int fitWidth = 0;
 
   static BakeRequest sequenceJudging();
 };
