@@ -69,33 +69,51 @@ def _followed(source):
             if s is not None}
 
 
+def _motion(world):
+    """(source, kind, changing) of a world whose light changes over time: kind "files" for an image sequence, else
+    "render" (keyframed or driven world nodes, a Sky Texture's, a movie: `changing` says which). ProbeError for no
+    world, a world without a probe, or one that does not change over time."""
+    if world is None:
+        raise ProbeError("the scene has no world: add one in World properties")
+    try:
+        source = find_probe(world, bpy.app.version)
+    except ValueError as e:
+        raise ProbeError(str(e))
+    image = source.image
+    changing = sorted(set(animated_paths(world.node_tree)) - (_followed(source) if image else set()))
+    if image is not None and image.source == "SEQUENCE" and not changing:
+        return source, "files", changing
+    if world.animation_data is not None and (world.animation_data.drivers or _fcurves(world.animation_data)):
+        changing.append("world")
+    if image is not None and image.source == "MOVIE":
+        changing.append("movie")
+    if not changing:
+        follows = " (the lamps follow its strength and rotation)" if image is not None else ""
+        raise ProbeError("world '%s' does not change over time%s: use Bake probe to lights" % (world.name, follows))
+    return source, "render", changing
+
+
+def world_motion(world):
+    """How Bake animation gets the world's frames: "files" (an image sequence's), "render" (the world rendered at
+    each frame) or None (a world it would refuse)."""
+    try:
+        return _motion(world)[1]
+    except ProbeError:
+        return None
+
+
 class FrameSource:
     """Where frame f's probe comes from: an image sequence's files (read through Blender, so its colour space
     counts), or the world rendered at frame f by a panoramic Cycles camera (on a copy of the world)."""
 
     def __init__(self, world, render_width=None):
-        if world is None:
-            raise ProbeError("the scene has no world: add one in World properties")
-        try:
-            self.source = find_probe(world, bpy.app.version)
-        except ValueError as e:
-            raise ProbeError(str(e))
+        self.source, self.kind, changing = _motion(world)
         image = self.source.image
         self._render = None
         self.projection = self.source.projection if image is not None else "latlong"
-        changing = sorted(set(animated_paths(world.node_tree)) - (_followed(self.source) if image else set()))
-        if image is not None and image.source == "SEQUENCE" and not changing:
-            self.kind, self.described = "files", "image sequence '%s'" % image.name
+        if self.kind == "files":
+            self.described = "image sequence '%s'" % image.name
             return
-        if world.animation_data is not None and (world.animation_data.drivers or _fcurves(world.animation_data)):
-            changing.append("world")
-        if image is not None and image.source == "MOVIE":
-            changing.append("movie")
-        if not changing:
-            follows = " (the lamps follow its strength and rotation)" if image is not None else ""
-            raise ProbeError("world '%s' does not change over time%s: use Bake probe to lights" % (world.name,
-                                                                                                    follows))
-        self.kind = "render"
         self.described = "world rendered each frame (%s)" % ("a movie" if "movie" in changing else
                                                              "animated: " + ", ".join(changing[:2]))
         # The rendered frames carry the whole world: strength and rotation are in the pixels, not followed.

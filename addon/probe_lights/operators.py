@@ -6,6 +6,7 @@ import time
 import bpy
 
 from . import cycles_settings, eevee_settings, native, probe_volumes
+from .animation import AnimationBake, frame_range, world_motion
 from .bake import RENDER_WIDTH, bake_world, needs_render, report_lines, restore_world, world_probe
 from .blender_caps import has_eevee_next, preset, sun_profile
 from .errors import ProbeError
@@ -116,6 +117,7 @@ class PROBE_LIGHTS_OT_tradeoff(ModalSteps, bpy.types.Operator):
         settings.tradeoff.clear()
         settings.tradeoff_method = self._method
         settings.tradeoff_source = self._probe[2]
+        settings.tradeoff_frames = 0
 
     def _step(self, context):
         """Measures the next count; True when all are done."""
@@ -134,8 +136,33 @@ class PROBE_LIGHTS_OT_tradeoff(ModalSteps, bpy.types.Operator):
         return self._done == len(TRADEOFF_COUNTS)
 
     def _finish(self, context, stopped=False):
+        if not stopped:
+            self._measure_animation(context)
         self.report({"INFO"}, "Measured %d light counts of %s%s" % (
             self._done, self._probe[2], " (stopped)" if stopped else ""))
+
+    def _measure_animation(self, context):
+        """For a world that changes over time, what Bake animation would cost at the panel's count: the scene's
+        frame read (or rendered) beside its bake, timed on the current frame as Bake animation makes it."""
+        scene, settings = context.scene, context.scene.probe_lights
+        if world_motion(scene.world) is None:
+            return
+        frame = scene.frame_current
+        try:
+            first, last = frame_range(scene, 0, 0)
+            bake = AnimationBake(context, settings, start=frame, end=frame)
+        except ProbeError:
+            return  # (a range, count or method Bake animation refuses: it says why when clicked)
+        try:
+            bake.step()
+        except ProbeError:
+            return
+        finally:
+            bake.close()
+        settings.tradeoff_frames, settings.tradeoff_frame_lights = last - first + 1, settings.count
+        settings.tradeoff_frame_read_ms = 1000 * bake.read_s
+        settings.tradeoff_frame_bake_ms = 1000 * bake.bake_s
+        settings.tradeoff_frames_rendered = bake.frames_source.kind == "render"
 
     def execute(self, context):
         try:

@@ -113,6 +113,13 @@ class ProbeLightsSettings(bpy.types.PropertyGroup):
         "tradeoff": CollectionProperty(type=ProbeLightsTradeoffRow),
         "tradeoff_method": StringProperty(default=""),
         "tradeoff_source": StringProperty(default=""),
+        # Bake animation at the count, for a world that changes over time (0 frames: none): a frame's read (or
+        # render) and bake, which run side by side.
+        "tradeoff_frames": IntProperty(default=0),
+        "tradeoff_frame_lights": IntProperty(default=0),
+        "tradeoff_frame_read_ms": FloatProperty(default=0.0),
+        "tradeoff_frame_bake_ms": FloatProperty(default=0.0),
+        "tradeoff_frames_rendered": BoolProperty(default=False),
     }
 
 

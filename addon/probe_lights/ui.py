@@ -232,6 +232,26 @@ def draw_tradeoff(layout, scene, width, measure):
             if not fits(text, width / len(texts) - 6, measure):
                 OVERFLOW.append(text)
             row.label(text=text)
+    if settings.tradeoff_frames:
+        _lines(box.column(align=True), animation_cost(settings), width - 16, measure, icon="RENDER_ANIMATION")
+
+
+def animation_cost(settings):
+    """Bake animation's cost at the count, from the Tradeoff's frame: read (or rendered) beside its bake."""
+    read, bake = settings.tradeoff_frame_read_ms, settings.tradeoff_frame_bake_ms
+    total = settings.tradeoff_frames * max(read, bake) / 1000
+    return "Bake animation, %d frames of %d lights: about %s (the world %s in %s beside a %s bake a frame)" % (
+        settings.tradeoff_frames, settings.tradeoff_frame_lights, _seconds(total),
+        "rendered" if settings.tradeoff_frames_rendered else "read", _seconds(read / 1000), _seconds(bake / 1000))
+
+
+def _seconds(s):
+    """A duration in words: "85 ms", "1.4 s", "69 s", "3 min"."""
+    if s < 0.9995:
+        return "%.0f ms" % (1000 * s)
+    if s < 9.95:
+        return "%.1f s" % s
+    return "%.0f s" % s if s < 120 else "%.0f min" % (s / 60)
 
 
 def _times(factor):

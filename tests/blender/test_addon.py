@@ -52,7 +52,8 @@ from addon_animation import (  # noqa: E402
     test_an_image_sequence_bakes_into_keyed_lamps_that_keep_their_ids,
     test_a_bake_of_an_image_sequence_reads_the_scenes_frame_and_restore_takes_the_keys,
     test_sequence_frames_are_the_ones_cycles_renders,
-    test_an_animated_sky_is_rendered_frame_by_frame)
+    test_an_animated_sky_is_rendered_frame_by_frame,
+    test_the_tradeoff_says_what_bake_animation_costs)
 from addon_install import (  # noqa: E402
     test_another_platforms_zip_is_refused_and_the_installed_one_kept,
     test_panel_draws_at_default_width_in_this_blender)
@@ -82,4 +83,5 @@ harness.run([test_register_unregister, test_real_probes_bake_with_their_energy,
              test_an_image_sequence_bakes_into_keyed_lamps_that_keep_their_ids,
              test_a_bake_of_an_image_sequence_reads_the_scenes_frame_and_restore_takes_the_keys,
              test_sequence_frames_are_the_ones_cycles_renders, test_an_animated_sky_is_rendered_frame_by_frame,
+             test_the_tradeoff_says_what_bake_animation_costs,
              test_another_platforms_zip_is_refused_and_the_installed_one_kept])

@@ -184,10 +184,18 @@ def test_an_animated_sky_is_rendered_frame_by_frame():
     scene.frame_start, scene.frame_end = 1, 3
     animation = harness.addon_module("animation")
     animation.RENDER_WIDTH, width = 512, animation.RENDER_WIDTH  # half the add-on's: enough to find the sun
+    settings = scene.probe_lights
     try:
         lamps = _bake_animation(count=8)
+        # The Tradeoff times Bake animation's frame too: here the world's render beside the bake.
+        settings.count = 8
+        assert bpy.ops.probe_lights.tradeoff() == {"FINISHED"}
     finally:
         animation.RENDER_WIDTH = width
+    assert settings.tradeoff_frames == 3 and settings.tradeoff_frames_rendered
+    assert settings.tradeoff_frame_read_ms > 0 and settings.tradeoff_frame_bake_ms > 0
+    assert "(the world rendered in " in harness.addon_module("ui").animation_cost(settings)
+    print("  " + harness.addon_module("ui").animation_cost(settings))
     elevations = []
     for f in (1, 2, 3):
         scene.frame_set(f)
@@ -196,3 +204,30 @@ def test_an_animated_sky_is_rendered_frame_by_frame():
     # Keyed 10 and 50 degrees at frames 1 and 3: 30 at frame 2, between Bezier keys.
     assert all(abs(e - want) < 3 for e, want in zip(elevations, (10, 30, 50))), elevations
     print("  the sky's sun at %s degrees" % ", ".join("%.1f" % e for e in elevations))
+
+
+def test_the_tradeoff_says_what_bake_animation_costs():
+    """On a world that changes over time the Tradeoff adds Bake animation's cost at the panel's count: the current
+    frame read (or rendered) beside its bake, over the scene's frames. It keys nothing; a still world gets no line."""
+    harness.empty_scene()
+    scene, settings = bpy.context.scene, bpy.context.scene.probe_lights
+    ui = harness.addon_module("ui")
+    with tempfile.TemporaryDirectory() as folder:
+        _write_sequence(folder)
+        world, _ = _sequence_world(folder)
+        scene.frame_start, scene.frame_end = 1, FRAMES
+        settings.count = 6
+        before = harness.tree_snapshot(world)
+        assert bpy.ops.probe_lights.tradeoff() == {"FINISHED"}
+        assert (settings.tradeoff_frames, settings.tradeoff_frame_lights) == (FRAMES, 6)
+        assert settings.tradeoff_frame_read_ms > 0 and settings.tradeoff_frame_bake_ms > 0
+        assert not settings.tradeoff_frames_rendered
+        line = ui.animation_cost(settings)
+        assert line.startswith("Bake animation, %d frames of 6 lights: about " % FRAMES), line
+        assert "(the world read in " in line, line
+        assert harness.tree_snapshot(world) == before and not light_objects.baked_lights(world)
+        assert world.node_tree.animation_data is None or not world.node_tree.animation_data.action
+        print("  " + line)
+    harness.env_world(harness.float_image("still", np.full((32, 64, 3), 0.5, np.float32)))
+    assert bpy.ops.probe_lights.tradeoff() == {"FINISHED"}
+    assert settings.tradeoff_frames == 0
