@@ -15,7 +15,8 @@ of lit object pixels (render_scene.block_difference's rule, from the world-lit f
   jitter   the second difference, sum |L(f+1) - 2 L(f) + L(f-1)|, over the world-lit renders' own: what is not
            smooth in time (a lamp that jumps), 1 when the lamps change as smoothly as the world.
 Cycles at 128 x 96, 128 samples, seed fixed (its noise correlated from frame to frame), 4 bounces. 16 lamps;
-PROBELIGHTS_BENCH_LIGHTS=64 for 64.
+PROBELIGHTS_BENCH_LIGHTS=64 for 64. The sphere over a plane; PROBELIGHTS_BENCH_SCENE=still_life for the still life
+(render_scene.still_life: a metal sphere, a glossy box, a rough vase and a thin rod on a floor).
 """
 import os
 import pathlib
@@ -69,6 +70,7 @@ def sky_day():
 
 
 SKY = os.environ.get("PROBELIGHTS_BENCH_WORLD") == "sky"
+STILL_LIFE = os.environ.get("PROBELIGHTS_BENCH_SCENE") == "still_life"
 with tempfile.TemporaryDirectory() as tmp:
     folder = pathlib.Path(tmp)
     harness.empty_scene()
@@ -81,7 +83,7 @@ with tempfile.TemporaryDirectory() as tmp:
         world = harness.env_world(image)
         env = next(n for n in world.node_tree.nodes if n.bl_idname == "ShaderNodeTexEnvironment")
         env.image_user.frame_duration = FRAMES
-    render_scene.sphere_over_plane(128, 96, 128)
+    (render_scene.still_life if STILL_LIFE else render_scene.sphere_over_plane)(128, 96, 128)
     scene = bpy.context.scene
     scene.frame_start, scene.frame_end = 1, FRAMES
     t = time.perf_counter()
@@ -98,8 +100,9 @@ with tempfile.TemporaryDirectory() as tmp:
         assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=LIGHTS) == {"FINISHED"}
         single.append(render_scene.render())
     rows.append(("each frame its own bake (Bake probe to lights)", measure(world_lit, lit, single)))
-    print("Blender %s, %s, %d frames, %d lamps, %d lit blocks, %.0f s" % (
-        bpy.app.version_string, "Sky Texture day" if SKY else "day sequence", FRAMES, LIGHTS, lit.sum(),
+    print("Blender %s, %s, %s, %d frames, %d lamps, %d lit blocks, %.0f s" % (
+        bpy.app.version_string, "Sky Texture day" if SKY else "day sequence",
+        "still life" if STILL_LIFE else "sphere over a plane", FRAMES, LIGHTS, lit.sum(),
         time.perf_counter() - t))
     print("| lamps | error | change | jitter |\n|---|---:|---:|---:|")
     for name, (error, change, jitter) in rows:
