@@ -26,7 +26,8 @@ from .errors import ProbeError
 from .lamp_keys import ENERGY_KEY, drive_energy_by_key
 from .light_objects import make_lights
 from .properties import NATIVE_SUN_ANGLES, cut_method
-from .world_graph import ProbeSource, find_probe
+from .bake import finish_world, world_source
+from .world_graph import ProbeSource
 from .world_image import WorldRender, sequence_pixels
 
 # Lat-long width an animated world without an image sequence is rendered at, a frame: a single bake's
@@ -73,12 +74,7 @@ def _motion(world):
     """(source, kind, changing) of a world whose light changes over time: kind "files" for an image sequence, else
     "render" (keyframed or driven world nodes, a Sky Texture's, a movie: `changing` says which). ProbeError for no
     world, a world without a probe, or one that does not change over time."""
-    if world is None:
-        raise ProbeError("the scene has no world: add one in World properties")
-    try:
-        source = find_probe(world, bpy.app.version)
-    except ValueError as e:
-        raise ProbeError(str(e))
+    source = world_source(world)
     image = source.image
     changing = sorted(set(animated_paths(world.node_tree)) - (_followed(source) if image else set()))
     if image is not None and image.source == "SEQUENCE" and not changing:
@@ -286,7 +282,6 @@ class AnimationBake:
 
     def finish(self, context):
         """Makes the lamps from the first frame and keys every frame; returns the summary."""
-        from .bake import finish_world  # the world's mix and settings, as a single bake leaves them
         self.close()
         scene, settings = context.scene, self.settings
         t0 = time.perf_counter()

@@ -43,16 +43,22 @@ def needs_render(world):
     return source.render_reason if source.image is None else ""
 
 
+def world_source(world):
+    """Where the world's probe comes from (world_graph.find_probe's ProbeSource); ProbeError for no world or a world
+    without one."""
+    if world is None:
+        raise ProbeError("the scene has no world: add one in World properties")
+    try:
+        return find_probe(world, bpy.app.version)
+    except ValueError as e:
+        raise ProbeError(str(e))
+
+
 def world_probe(world, rendered=None):
     """The world's probe: (pixels, projection, a description, the ProbeSource, warnings). Read from its image where
     the rules of world_graph.py find one, else rendered (on a copy: the world itself is not touched); `rendered`:
     pixels already rendered by a WorldRender job."""
-    if world is None:
-        raise ProbeError("the scene has no world: add one in World properties")
-    try:
-        source = find_probe(world, bpy.app.version)
-    except ValueError as e:
-        raise ProbeError(str(e))
+    source = world_source(world)
     if source.image is None:
         pixels = rendered if rendered is not None else _rendered_probe(world)
         return pixels, "latlong", "rendered world (%s)" % source.render_reason, source, []
