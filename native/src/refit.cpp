@@ -167,10 +167,9 @@ std::vector<Light> refitIrradiance(const Evaluator& evaluator, const std::vector
   const Rgb* held = options.keepEnergy ? &sum : nullptr;
   solveColours(evaluator, receivers, out, held);
   if (placeDarkLights(evaluator, receivers, out)) solveColours(evaluator, receivers, out, held);
-  // Three rounds up to 16 lights, two above: with many suns a third round changes the errors by nothing
-  // measurable and costs time; with few it still lowers them (docs/decisions.md).
-  constexpr int kThreeRoundsUpTo = 16;
-  const int rounds = options.moveRounds > 0 ? options.moveRounds : n <= kThreeRoundsUpTo ? 3 : 2;
+  const int rounds = options.moveRounds > 0                  ? options.moveRounds
+                     : lights.size() <= kThreeMoveRoundsUpTo ? 3
+                                                             : 2;
   for (int round = 0; options.moveDirections && round < rounds; ++round) {
     moveDirections(evaluator, receivers, out);
     solveColours(evaluator, receivers, out, held);

@@ -283,7 +283,7 @@ void SequenceBaker::finishFrame(const Probe& probe, const MomentTable& table, Se
   // docs/results/sequences.md). Tried and dropped: one round of the first angle fit too (10 ms less, the
   // studio's shadows 1.12x), and half the refit's ground points (St. Peter's shadows 1.19x).
   how.refitAngleRounds = 1;
-  if (lights.size() > 16) how.moveRounds = 1;
+  if (lights.size() > kThreeMoveRoundsUpTo) how.moveRounds = 1;
   if (finish_.refit && !how.refits(lights.size()))
     frame.notes.push_back({NoteKind::Warning, "the refit takes at most " + std::to_string(kMaxRefitLights) +
                                                   " lights: " + std::to_string(lights.size()) +

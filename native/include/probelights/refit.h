@@ -28,9 +28,12 @@ struct RefitOptions {
   // it is positive: the colours solved with that sum weighted far above the receivers, then scaled to it
   // exactly. The fit then cannot trade energy for its receivers (energyShift is rounding).
   bool keepEnergy = false;
-  // Rounds of moves; 0: three up to 16 lights, two above (the single bake's rule).
+  // Rounds of moves; 0: three up to kThreeMoveRoundsUpTo lights, two above (the single bake's rule).
   int moveRounds = 0;
 };
+// Up to this many lights the refit's moves take three rounds, above it two: with many suns a third round
+// changes the errors by nothing measurable and costs time; with few it still lowers them (docs/decisions.md).
+inline constexpr std::size_t kThreeMoveRoundsUpTo = 16;
 std::vector<Light> refitIrradiance(const Evaluator& evaluator, const std::vector<Light>& lights,
                                    double* energyShift = nullptr, const RefitOptions& options = {});
 
