@@ -61,12 +61,17 @@ def sun_parameters(direction, rgb, angle, blender_version):
 
     `angle`: the light's full cone angle from the core (radians; its `angle` column: fitted to the probe's shadows
     when they are evaluated, 0 for hard shadows), at most 180 degrees."""
+    return {"rotation": rotation_to_direction(direction), **sun_strength(rgb, angle, blender_version)}
+
+
+def sun_strength(rgb, angle, blender_version):
+    """sun_parameters without the rotation: colour, strength and angle (Bake animation turns its suns' keys by
+    the shortest arc instead)."""
     colour, irradiance = colour_and_scale(rgb)
     widest = MAX_SUN_ANGLE if sun_profile(blender_version) == "cone" else MAX_DISC_SUN_ANGLE
     angle = min(max(float(angle), 0.0), widest)
     factor = sun_normal_irradiance(angle, blender_version)
-    return {"rotation": rotation_to_direction(direction), "color": colour,
-            "energy": irradiance / factor if factor > 0 else 0.0, "angle": angle}
+    return {"color": colour, "energy": irradiance / factor if factor > 0 else 0.0, "angle": angle}
 
 
 def point_parameters(direction, rgb, distance):

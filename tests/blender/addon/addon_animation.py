@@ -95,6 +95,8 @@ def test_an_image_sequence_bakes_into_keyed_lamps_that_keep_their_ids():
             for lamp in lamps:  # every lamp keyed on every frame
                 fcurves = animation._fcurves(lamp.animation_data)
                 assert {len(c.keyframe_points) for c in fcurves} == {FRAMES}, lamp.name
+                # straight between frames (sampled light: no overshoot)
+                assert {p.interpolation for c in fcurves for p in c.keyframe_points} == {"LINEAR"}, lamp.name
             spot = _check_frames(lamps, frames, 2.0)
             print("  refit %s: %d lamps keyed on %d frames; the spot kept lamp %d; energy shift up to %.2f %%" % (
                 refit, len(lamps), FRAMES, spot, 100 * max(abs(f["energy_shift"]) for f in frames)))
