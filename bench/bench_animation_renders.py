@@ -1,6 +1,7 @@
 """Flicker in Cycles renders: the sphere over a plane lit by an animated world, by its Bake animation lamps (Refit
-on with every frame's energy exact, the default; Refit on with Exact energy off; Refit off) and by each frame's own
-single bake, frame by frame (docs/results/sequences.md, "Renders"):
+on with every frame's energy exact, the default; Refit on with Exact energy off; Refit off), by each frame's own
+single bake, and by each frame baked alone with its energy exact (Bake animation of that one frame), frame by
+frame (docs/results/sequences.md, "Renders"):
 
   tests/blender/run.sh ~/.cache/probelights/bpy-4.5.15/bin/python bench/bench_animation_renders.py \\
       build/probe_lights-0.1.0-linux_x64.zip ../shared
@@ -100,6 +101,15 @@ with tempfile.TemporaryDirectory() as tmp:
         assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=LIGHTS) == {"FINISHED"}
         single.append(render_scene.render())
     rows.append(("each frame its own bake (Bake probe to lights)", measure(world_lit, lit, single)))
+    # Each frame baked alone with its energy exact, as Bake animation finishes a frame: what exactness costs
+    # without the frames' coherence (a single bake's refit trades energy).
+    alone = []
+    for f in range(1, FRAMES + 1):
+        assert bpy.ops.probe_lights.bake_animation("EXEC_DEFAULT", count=LIGHTS, frame_start=f,
+                                                   frame_end=f) == {"FINISHED"}
+        scene.frame_set(f)
+        alone.append(render_scene.render())
+    rows.append(("each frame alone, energy exact (Bake animation of that frame)", measure(world_lit, lit, alone)))
     print("Blender %s, %s, %s, %d frames, %d lamps, %d lit blocks, %.0f s" % (
         bpy.app.version_string, "Sky Texture day" if SKY else "day sequence",
         "still life" if STILL_LIFE else "sphere over a plane", FRAMES, LIGHTS, lit.sum(),
