@@ -5,14 +5,16 @@ still life of a metal sphere, a glossy and a rough dielectric and a thin rod on 
                       threshold of a sweep that came closest by HDR-FLIP;
   EEVEE's own + probe the same (best threshold) with a light probe volume fitted to the scene, baked with the
                       world captured: EEVEE's world shadowed and bounced as well as EEVEE can;
+  EEVEE's own + ray tracing   the same (best threshold) with EEVEE's ray tracing instead of the probe;
   ours                EEVEE with the add-on's default bake (64 suns, baked in EEVEE);
   ours + probe        the same with that volume probe baked by the add-on (Bake light probes with the lamps);
+  ours + ray tracing  ours with EEVEE's ray tracing on (screen-traced, Fast GI at its defaults) and no probe;
   sources + residual + probe   the lamps of the bright sources and the residual world (Lamps take: The bright
                       sources), the probe baked: EEVEE's world masked by the probe's visibility (issue 52, item 3).
 Each is given as HDR-FLIP's mean (flip-evaluator), the per-pixel and the 8x8-block luminance difference
 (render_scene.render_errors), with the render's seconds; the first row of each probe is the truth's own noise
 (Cycles against itself with another seed). With a picture directory, one row per probe: the truth, EEVEE's own
-(best threshold, + probe), ours + probe, sources + residual + probe, and their FLIP maps.
+(best threshold, + probe), ours + probe, ours + ray tracing, sources + residual + probe, and their FLIP maps.
 
     tests/blender/run.sh --gl ~/.cache/probelights/bpy-4.5.15/bin/python bench/bench_eevee_rivals.py \\
         build/probe_lights-0.1.0-linux_x64.zip ../shared [sphere|still-life] [PROBES] [PICTURE_DIR]
@@ -44,14 +46,7 @@ volumes = harness.addon_module("probe_volumes")
 
 
 def build(probe):
-    harness.empty_scene()
-    harness.addon_module("eevee_settings").restore(bpy.context.scene)
-    harness.env_world(bpy.data.images.load(probe))
-    {"sphere": render_scene.sphere_over_plane, "still-life": render_scene.still_life}[SCENE](W, H, CYCLES_SAMPLES)
-    scene = bpy.context.scene
-    scene.eevee.taa_render_samples = EEVEE_SAMPLES
-    scene.eevee.shadow_pool_size, scene.eevee.shadow_resolution_scale = "512", 1.0
-    return scene
+    return render_scene.eevee_rivals_scene(probe, SCENE, W, H, CYCLES_SAMPLES, EEVEE_SAMPLES)
 
 
 def fitted_volume(scene, capture_world):
@@ -109,6 +104,10 @@ for PROBE in PROBES:
             best = (flip, threshold, own, seconds)
     row("EEVEE's own, best threshold", truth, best[2], best[3], " (%g)" % best[1])
     scene.world.sun_threshold = best[1]
+    scene.eevee.use_raytracing = True  # as below for ours: EEVEE's ray tracing and Fast GI, no probe
+    own_traced, seconds = timed_render()
+    row("EEVEE's own + ray tracing", truth, own_traced, seconds)
+    scene.eevee.use_raytracing = False
     volume = fitted_volume(scene, capture_world=True)
     start = time.perf_counter()
     bpy.ops.object.lightprobe_cache_bake(subset="ALL")
@@ -123,6 +122,12 @@ for PROBE in PROBES:
     assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=SUNS) == {"FINISHED"}
     ours, seconds = timed_render()
     row("ours", truth, ours, seconds)
+    # EEVEE's own ray tracing (4.2+: Render > Raytracing, screen-traced, its Fast GI for diffuse bounces) in place
+    # of a volume probe: the bounce from what is on screen, no bake.
+    scene.eevee.use_raytracing = True
+    ours_traced, seconds = timed_render()
+    row("ours + ray tracing", truth, ours_traced, seconds)
+    scene.eevee.use_raytracing = False
     fitted_volume(scene, capture_world=False)
     start = time.perf_counter()
     assert bpy.ops.probe_lights.bake_light_probes() == {"FINISHED"}
@@ -143,13 +148,14 @@ for PROBE in PROBES:
     if PICTURES:
         os.makedirs(PICTURES, exist_ok=True)
         name = os.path.splitext(os.path.basename(PROBE))[0]
-        render_scene.save_png(np.concatenate([truth, own_probe, ours_probe, residual], axis=1),
+        render_scene.save_png(np.concatenate([truth, own_probe, ours_probe, ours_traced, residual], axis=1),
                               os.path.join(PICTURES, "%s_%s.png" % (SCENE, name)))
-        maps = np.concatenate([render_scene.flip(truth, p, picture=True) for p in (own_probe, ours_probe, residual)], axis=1)
+        maps = np.concatenate([render_scene.flip(truth, p, picture=True)
+                               for p in (own_probe, ours_probe, ours_traced, residual)], axis=1)
         render_scene.save_png(maps, os.path.join(PICTURES, "%s_%s_flip.png" % (SCENE, name)), display=True)
 print("\nHDR-FLIP / block difference:\n")
 names = ["Cycles, another seed", "EEVEE's own, threshold 10", "EEVEE's own, best threshold", "EEVEE's own + probe",
-         "ours", "ours + probe", "sources + residual + probe"]
+         "EEVEE's own + ray tracing", "ours", "ours + probe", "ours + ray tracing", "sources + residual + probe"]
 print("| probe | " + " | ".join(names) + " |")
 print("|---" * (len(names) + 1) + "|")
 for probe, cells in SUMMARY.items():

@@ -32,13 +32,7 @@ print("Blender %s, %s, %dx%d; Cycles %d samples, 4 bounces; EEVEE %d samples; %d
     bpy.app.version_string, SCENE, W, H, CYCLES_SAMPLES, EEVEE_SAMPLES, SUNS))
 print("| probe | cells | HDR-FLIP | block | pixel | bake s |\n|---|---|---|---|---|---|")
 for probe in PROBES:
-    harness.empty_scene()
-    harness.addon_module("eevee_settings").restore(bpy.context.scene)
-    harness.env_world(bpy.data.images.load(probe))
-    {"sphere": render_scene.sphere_over_plane, "still-life": render_scene.still_life}[SCENE](W, H, CYCLES_SAMPLES)
-    scene = bpy.context.scene
-    scene.eevee.taa_render_samples = EEVEE_SAMPLES
-    scene.eevee.shadow_pool_size, scene.eevee.shadow_resolution_scale = "512", 1.0
+    scene = render_scene.eevee_rivals_scene(probe, SCENE, W, H, CYCLES_SAMPLES, EEVEE_SAMPLES)
     truth = render_scene.render()
     scene.render.engine = eevee
     assert bpy.ops.probe_lights.bake("EXEC_DEFAULT", count=SUNS) == {"FINISHED"}

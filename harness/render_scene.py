@@ -354,6 +354,22 @@ def eevee_comparison_scene(probe, engine, width, height, samples):
     return scene
 
 
+def eevee_rivals_scene(probe, scene_name, width, height, cycles_samples, eevee_samples):
+    """The sphere over a plane (`scene_name` "sphere") or the still life ("still-life") lit by `probe`'s world, for
+    EEVEE held to Cycles with its bounces (bench/bench_eevee_rivals.py, bench_volume_resolution.py): the add-on's
+    EEVEE settings undone, Cycles at `cycles_samples` with 4 bounces, EEVEE at `eevee_samples` with a 512 MB
+    shadow pool; the engine is left at Cycles."""
+    import harness
+    harness.empty_scene()
+    harness.addon_module("eevee_settings").restore(bpy.context.scene)
+    harness.env_world(bpy.data.images.load(probe))
+    {"sphere": sphere_over_plane, "still-life": still_life}[scene_name](width, height, cycles_samples)
+    scene = bpy.context.scene
+    scene.eevee.taa_render_samples = eevee_samples
+    scene.eevee.shadow_pool_size, scene.eevee.shadow_resolution_scale = "512", 1.0
+    return scene
+
+
 def probe_bake_renders(scene):
     """Three renders of a scene with baked lamps and a light probe volume: Cycles (the lamps, the scene's bounces),
     EEVEE with the lamps alone, and EEVEE after the add-on's bake of the light probes; the engine is left at EEVEE."""
