@@ -238,5 +238,6 @@ def restore_world(scene, world):
     if eevee:
         parts.append("EEVEE %s back" % " and ".join(e.replace("shadow_pool_size", "shadow pool")
                                                     .replace("shadow_resolution_scale", "shadow resolution")
+                                                    .replace("use_raytracing", "ray tracing")
                                                     for e in eevee))
     return ", ".join(parts)

@@ -7,6 +7,13 @@ EEVEE_NEXT_SINCE = (4, 2, 0)  # one shadow pool for every light, ray visibility 
 NORMALIZED_SUN_SINCE = (4, 0, 0)  # measured: 3.4 disc; 4.5, 5.0, 5.2 normalized (3.5 to 4.4 not measured)
 LIGHT_TREE_SINCE = (4, 0, 0)  # Cycles' light tree: more lamps render slower, not noisier (docs/results/renders.md)
 WORLD_NODES_ALWAYS_SINCE = (5, 0, 0)  # World.use_nodes deprecated; Cycles 5.0 renders use_nodes False by its nodes
+# How EEVEE Next bounces the lamps' light closest to Cycles (with its 4 bounces; 64 suns on the sphere over a plane,
+# KernerEnvLatLong, bench/bench_eevee_rivals.py's renders; docs/results/eevee_rivals.md). Up to 5.0 its ray
+# tracing alone (Fast GI): 3.02 % in 4.2.23 and 4.5.15, 3.05 % in 5.0.1, against 3.41-3.44 % with a light probe
+# volume baked with the lamps, and both together farther than either (6.9-7.2 %). From 5.2 the volume and ray
+# tracing together: 2.05 % in 5.2.3, 2.06 % in 5.3.0, against 3.07-3.08 % with the volume, 5.05-5.09 % with ray
+# tracing alone. 5.1 is not measured and takes 5.0's answer (the older on a tie, as render_cost.nearest_version).
+PROBE_WITH_RAY_TRACING_SINCE = (5, 2, 0)
 
 
 def is_eevee(engine):
@@ -53,3 +60,9 @@ def has_light_tree(blender_version):
 def world_always_uses_nodes(blender_version):
     """Whether that Blender renders every world through its node tree, whatever World.use_nodes says (5.0 on)."""
     return tuple(blender_version) >= WORLD_NODES_ALWAYS_SINCE
+
+
+def eevee_bounce(blender_version):
+    """What gives EEVEE Next the lamps' bounce light closest to Cycles in that Blender: "ray tracing" (alone: a
+    light probe volume with it is farther) or "volume and ray tracing" (PROBE_WITH_RAY_TRACING_SINCE)."""
+    return "volume and ray tracing" if tuple(blender_version) >= PROBE_WITH_RAY_TRACING_SINCE else "ray tracing"

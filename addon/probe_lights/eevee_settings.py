@@ -122,9 +122,26 @@ def _apply(scene):
 
 
 def restore(scene):
-    """Puts back what apply() replaced. Returns the names restored."""
-    return put_back(scene, BEFORE_KEY, scene.eevee,
-                    lambda name, value: str(value) if name == "shadow_pool_size" else float(value))
+    """Puts back what apply() and use_ray_tracing() replaced. Returns the names restored."""
+    return sorted(put_back(scene, BEFORE_KEY, scene.eevee,
+                           lambda name, value: str(value) if name == "shadow_pool_size" else float(value))
+                  + put_back(scene, RAYS_KEY, scene.eevee, lambda name, value: bool(value)))
+
+
+# EEVEE Next bounces no light by itself. Its ray tracing (Render > Raytracing: screen-traced, with its Fast GI for
+# rough surfaces) bounces the lamps' light from what is on screen, with no bake; up to 5.1 that alone comes closest
+# to Cycles, from 5.2 it does with a light probe volume baked with the lamps (blender_caps.eevee_bounce). The panel
+# offers it as probe_volumes.offer says.
+RAYS_KEY = "probe_lights_eevee_rays_before"  # on the scene: ray tracing as it was before use_ray_tracing()
+
+
+def use_ray_tracing(scene):
+    """Turns on EEVEE's ray tracing, remembering it was off (Restore world turns it off again). Returns whether
+    it changed."""
+    if not eevee_next(scene) or scene.eevee.use_raytracing:
+        return False
+    set_remembering(scene, RAYS_KEY, scene.eevee, {"use_raytracing": True})
+    return True
 
 
 def baked_suns(scene):

@@ -284,6 +284,26 @@ class PROBE_LIGHTS_OT_eevee_settings(bpy.types.Operator):
         return {"FINISHED"}
 
 
+class PROBE_LIGHTS_OT_eevee_ray_tracing(bpy.types.Operator):
+    """Turn on EEVEE's ray tracing: its Fast GI bounces the lamps' light from what is on screen (up to Blender 5.1
+    closest to Cycles alone, from 5.2 with a light probe volume); Restore world turns it off again"""
+
+    bl_idname = "probe_lights.eevee_ray_tracing"
+    bl_label = "Use EEVEE ray tracing"
+    bl_options = {"REGISTER", "UNDO"}
+
+    @classmethod
+    def poll(cls, context):
+        return context.scene is not None and eevee_settings.eevee_next(context.scene)
+
+    def execute(self, context):
+        if eevee_settings.use_ray_tracing(context.scene):
+            self.report({"INFO"}, "EEVEE: ray tracing on (Restore world turns it off)")
+        else:
+            self.report({"INFO"}, "EEVEE's ray tracing is already on")
+        return {"FINISHED"}
+
+
 class PROBE_LIGHTS_OT_bake_light_probes(bpy.types.Operator):
     """Bake EEVEE's light probe volumes with the baked suns: the shadow pool made room for the bake, and past what
     the largest holds, the bake sees the brightest suns carrying the others' light; all put back after"""
@@ -324,4 +344,5 @@ class PROBE_LIGHTS_OT_bake_light_probes(bpy.types.Operator):
 
 
 classes = (PROBE_LIGHTS_OT_bake, PROBE_LIGHTS_OT_restore, PROBE_LIGHTS_OT_tradeoff, PROBE_LIGHTS_OT_set_count,
-           PROBE_LIGHTS_OT_cycles_settings, PROBE_LIGHTS_OT_eevee_settings, PROBE_LIGHTS_OT_bake_light_probes)
+           PROBE_LIGHTS_OT_cycles_settings, PROBE_LIGHTS_OT_eevee_settings, PROBE_LIGHTS_OT_eevee_ray_tracing,
+           PROBE_LIGHTS_OT_bake_light_probes)

@@ -19,7 +19,7 @@ import math
 
 import bpy
 
-from . import eevee_settings
+from . import blender_caps, eevee_settings
 from .bake import LUM
 from .light_objects import (OBJECT_TAG, VOLUME_TAG, add_to_lamps, baked_lights, scene_box, scenery,
                             sun_direction)
@@ -96,10 +96,28 @@ def remove_fitted(obj):
 
 
 def offer(scene):
-    """One line when EEVEE (Next) renders the baked suns with no light probe volume to bounce their light, or ''."""
-    if not eevee_settings.eevee_next(scene) or volume_probes(scene) or len(_suns(scene)) == 0:
+    """One line on how EEVEE (Next) should bounce the baked suns' light, or '' when it already does as it comes
+    closest to Cycles in this Blender (blender_caps.eevee_bounce): up to 5.1 its ray tracing alone, from 5.2 a
+    light probe volume baked with the lamps and ray tracing."""
+    if not eevee_settings.eevee_next(scene) or len(_suns(scene)) == 0:
         return ""
-    return "EEVEE bounces no light without a light probe volume: add one around the scene, baked with the lamps"
+    traced, volumes = scene.eevee.use_raytracing, bool(volume_probes(scene))
+    version = "%d.%d" % bpy.app.version[:2]
+    if blender_caps.eevee_bounce(bpy.app.version) == "ray tracing":
+        if volumes and traced:
+            return ("In Blender %s EEVEE's ray tracing and a light probe volume together bounce the lamps' light "
+                    "farther from Cycles than either alone: turn one off" % version)
+        if volumes or traced:
+            return ""
+        return ("EEVEE bounces no light by itself: turn on its ray tracing (in Blender %s closest to Cycles, no "
+                "bake), or bake a light probe volume around the scene with the lamps" % version)
+    if not volumes:
+        return ("EEVEE bounces no light without a light probe volume: bake one around the scene with the lamps%s"
+                % ("" if traced else ", and turn on its ray tracing (both: closest to Cycles in Blender %s)"
+                   % version))
+    if not traced:
+        return "With the light probe volume, EEVEE's ray tracing comes closer to Cycles in Blender %s" % version
+    return ""
 
 
 # On the scene, after the add-on's bake of the probes: what the bake saw, the lamps' and the scene's part apart.

@@ -152,6 +152,8 @@ def _draw_probe_bake(layout, scene, width, measure, notes=None):
         column = box.column(align=True)
         for note, icon in notes:
             _lines(column, note, width - 16, measure, icon=icon)
+        if probe_volumes.offer(scene) and not scene.eevee.use_raytracing:
+            box.operator("probe_lights.eevee_ray_tracing", icon="CHECKMARK")
         box.operator("probe_lights.bake_light_probes", icon="LIGHTPROBE_VOLUME")
 
 

@@ -1,5 +1,5 @@
-"""The render settings the add-on offers for its lamps (Cycles' clamp and light tree, EEVEE's shadow pool), and
-their restore."""
+"""The render settings the add-on offers for its lamps (Cycles' clamp and light tree, EEVEE's shadow pool and ray
+tracing), and their restore."""
 
 import bpy
 
@@ -117,3 +117,46 @@ def test_light_probes_baked_here_are_flagged_when_the_lamps_or_objects_change():
     scene.render.engine = "CYCLES"
     assert volumes.stale(scene) == ""  # Cycles bakes no light probes
     assert bpy.ops.probe_lights.restore() == {"FINISHED"}
+
+
+def test_eevee_ray_tracing_offered_for_the_lamps_bounce_and_restore():
+    """EEVEE Next (4.2+) bounces no light by itself: with baked suns the panel offers what comes closest to Cycles
+    in this Blender (blender_caps.eevee_bounce): up to 5.1 its ray tracing alone (and a warning when a light probe
+    volume is there too), from 5.2 a volume baked with the lamps and ray tracing. Restore world turns off the ray
+    tracing it turned on; ray tracing the user turned on stays on. Nothing outside EEVEE Next."""
+    harness.empty_scene()
+    scene = bpy.context.scene
+    harness.env_world(bpy.data.images.load(harness.BUNDLED_PROBE))
+    bpy.ops.mesh.primitive_cube_add()
+    volumes = harness.addon_module("probe_volumes")
+    bake(count=8)
+    if bpy.app.version < (4, 2, 0):
+        assert volumes.offer(scene) == ""
+        print("  skipped: EEVEE Legacy (Blender %s) has no ray tracing to offer" % bpy.app.version_string)
+        return
+    assert volumes.offer(scene) == ""  # Cycles bounces by itself
+    scene.render.engine = harness.eevee_engine()
+    scene.eevee.use_raytracing = False
+    traced_alone = harness.addon_module("blender_caps").eevee_bounce(bpy.app.version) == "ray tracing"
+    offer = volumes.offer(scene)
+    assert offer.startswith("EEVEE bounces no light by itself: turn on its ray tracing" if traced_alone else
+                            "EEVEE bounces no light without a light probe volume"), offer
+    assert "ray tracing" in offer, offer
+    assert bpy.ops.probe_lights.eevee_ray_tracing() == {"FINISHED"}
+    assert scene.eevee.use_raytracing
+    assert volumes.offer(scene) == "" if traced_alone else volumes.offer(scene).endswith("with the lamps"), \
+        volumes.offer(scene)
+    bpy.ops.object.lightprobe_add(type="VOLUME")  # a volume with ray tracing: too much up to 5.1, best from 5.2
+    assert volumes.offer(scene).endswith("turn one off") if traced_alone else volumes.offer(scene) == "", \
+        volumes.offer(scene)
+    bpy.data.objects.remove(bpy.context.object)
+    assert bpy.ops.probe_lights.eevee_ray_tracing() == {"FINISHED"}  # again: nothing more to do
+    done = harness.addon_module("bake").restore_world(scene, scene.world)
+    assert "EEVEE ray tracing back" in done and not scene.eevee.use_raytracing, done
+    # The user's own ray tracing is the user's: a bake and its restore leave it on.
+    scene.eevee.use_raytracing = True
+    bake(count=8)
+    assert bpy.ops.probe_lights.restore() == {"FINISHED"}
+    assert scene.eevee.use_raytracing
+    scene.eevee.use_raytracing = False
+    scene.render.engine = "CYCLES"
