@@ -9,6 +9,7 @@ still life of a metal sphere, a glossy and a rough dielectric and a thin rod on 
   ours                EEVEE with the add-on's default bake (64 suns, baked in EEVEE);
   ours + probe        the same with that volume probe baked by the add-on (Bake light probes with the lamps);
   ours + ray tracing  ours with EEVEE's ray tracing on (screen-traced, Fast GI at its defaults) and no probe;
+  ours + probe + ray tracing   both (what the add-on offers from Blender 5.2: blender_caps.eevee_bounce);
   sources + residual + probe   the lamps of the bright sources and the residual world (Lamps take: The bright
                       sources), the probe baked: EEVEE's world masked by the probe's visibility (issue 52, item 3).
 Each is given as HDR-FLIP's mean (flip-evaluator), the per-pixel and the 8x8-block luminance difference
@@ -134,6 +135,9 @@ for PROBE in PROBES:
     bake_s = time.perf_counter() - start
     ours_probe, seconds = timed_render()
     row("ours + probe", truth, ours_probe, seconds, " (bake %.0f s)" % bake_s)
+    scene.eevee.use_raytracing = True  # both: farther than either up to 5.0, closest from 5.2 (blender_caps)
+    row("ours + probe + ray tracing", truth, *timed_render())
+    scene.eevee.use_raytracing = False
 
     scene = build(PROBE)
     scene.render.engine = eevee
@@ -155,7 +159,8 @@ for PROBE in PROBES:
         render_scene.save_png(maps, os.path.join(PICTURES, "%s_%s_flip.png" % (SCENE, name)), display=True)
 print("\nHDR-FLIP / block difference:\n")
 names = ["Cycles, another seed", "EEVEE's own, threshold 10", "EEVEE's own, best threshold", "EEVEE's own + probe",
-         "EEVEE's own + ray tracing", "ours", "ours + probe", "ours + ray tracing", "sources + residual + probe"]
+         "EEVEE's own + ray tracing", "ours", "ours + probe", "ours + ray tracing", "ours + probe + ray tracing",
+         "sources + residual + probe"]
 print("| probe | " + " | ".join(names) + " |")
 print("|---" * (len(names) + 1) + "|")
 for probe, cells in SUMMARY.items():
