@@ -65,7 +65,7 @@ def advice(scene):
 
 # The fitted volume: the objects' bounds and a little more, at EEVEE's default of 4 cells a side. Around the still
 # life of docs/results/eevee_rivals.md 4 a side baked in 8-17 s and 16 a side in 275-349 s (2 cores); with 4 a
-# side around the sphere over a plane EEVEE came from 7.2-9.2 % to 3.2-4.8 % of Cycles with 4 bounces (8 probes).
+# side around the sphere over a plane EEVEE came from 7.2-10.9 % to 3.2-6.3 % of Cycles with 4 bounces (15 probes).
 # Cells chosen from the objects' size (finer, or about cubic) were no closer to Cycles on one probe in two and
 # baked 3-18x longer (docs/decisions.md), so the count stays EEVEE's.
 VOLUME_MARGIN, VOLUME_CELLS = 1.05, 4
