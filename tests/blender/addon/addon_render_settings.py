@@ -79,18 +79,22 @@ def test_eevee_shadow_pool_follows_the_scene_and_restore():
     scene.render.engine = "CYCLES"
 
 
+def _cube_lit_by_8_suns():
+    """A cube under the bundled probe's world, 8 suns baked (in Cycles): (scene, world, cube, probe_volumes)."""
+    harness.empty_scene()
+    world = harness.env_world(bpy.data.images.load(harness.BUNDLED_PROBE))
+    bpy.ops.mesh.primitive_cube_add()
+    cube = bpy.context.object
+    bake(count=8)
+    return bpy.context.scene, world, cube, harness.addon_module("probe_volumes")
+
+
 def test_light_probes_baked_here_are_flagged_when_the_lamps_or_objects_change():
     """After the add-on's bake of EEVEE's light probes (stood in for by what it records after a bake: EEVEE's own
     bake needs OpenGL, test_probe_bake.py bakes for real), the panel says in one line when they no longer hold the
     scene's bounce light, and offers the bake again: the lamps baked again, the world's strength changed (the
     lamps follow it), an object moved, a lamp of the user's added. Not before the add-on's first bake, not outside EEVEE."""
-    harness.empty_scene()
-    scene = bpy.context.scene
-    world = harness.env_world(bpy.data.images.load(harness.BUNDLED_PROBE))
-    bpy.ops.mesh.primitive_cube_add()
-    cube = bpy.context.object
-    volumes = harness.addon_module("probe_volumes")
-    bake(count=8)
+    scene, world, cube, volumes = _cube_lit_by_8_suns()
     if bpy.app.version < (4, 2, 0):
         assert volumes.stale(scene) == ""
         print("  skipped: EEVEE Legacy (Blender %s) bakes no light probe volumes this way" % bpy.app.version_string)
@@ -124,12 +128,7 @@ def test_eevee_ray_tracing_offered_for_the_lamps_bounce_and_restore():
     in this Blender (blender_caps.eevee_bounce): up to 5.1 its ray tracing alone (and a warning when a light probe
     volume is there too), from 5.2 a volume baked with the lamps and ray tracing. Restore world turns off the ray
     tracing it turned on; ray tracing the user turned on stays on. Nothing outside EEVEE Next."""
-    harness.empty_scene()
-    scene = bpy.context.scene
-    harness.env_world(bpy.data.images.load(harness.BUNDLED_PROBE))
-    bpy.ops.mesh.primitive_cube_add()
-    volumes = harness.addon_module("probe_volumes")
-    bake(count=8)
+    scene, _, _, volumes = _cube_lit_by_8_suns()
     if bpy.app.version < (4, 2, 0):
         assert volumes.offer(scene) == ""
         print("  skipped: EEVEE Legacy (Blender %s) has no ray tracing to offer" % bpy.app.version_string)
