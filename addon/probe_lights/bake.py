@@ -236,8 +236,5 @@ def restore_world(scene, world):
         parts.append("Cycles %s back" % " and ".join(c.replace("sample_clamp_indirect", "indirect clamp")
                                                      .replace("use_light_tree", "light tree") for c in cycles))
     if eevee:
-        parts.append("EEVEE %s back" % " and ".join(e.replace("shadow_pool_size", "shadow pool")
-                                                    .replace("shadow_resolution_scale", "shadow resolution")
-                                                    .replace("use_raytracing", "ray tracing")
-                                                    for e in eevee))
+        parts.append("EEVEE %s back" % " and ".join(eevee_settings.WORDS[e] for e in eevee))
     return ", ".join(parts)

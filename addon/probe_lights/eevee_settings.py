@@ -132,6 +132,9 @@ def restore(scene):
 # rough surfaces) bounces the lamps' light from what is on screen, with no bake; up to 5.1 that alone comes closest
 # to Cycles, from 5.2 it does with a light probe volume baked with the lamps (blender_caps.eevee_bounce). The panel
 # offers it as probe_volumes.offer says.
+# The settings this module changes, in the panel's and the reports' words.
+WORDS = {"shadow_pool_size": "shadow pool", "shadow_resolution_scale": "shadow resolution",
+         "use_raytracing": "ray tracing"}
 RAYS_KEY = "probe_lights_eevee_rays_before"  # on the scene: ray tracing as it was before use_ray_tracing()
 
 
@@ -223,5 +226,5 @@ def unregister():
 
 def describe(wanted):
     """'shadow pool 1024 MB, shadow resolution 0.5' for a dict apply() returned."""
-    names = {"shadow_pool_size": "shadow pool %s MB", "shadow_resolution_scale": "shadow resolution %g"}
-    return ", ".join(names[name] % value for name, value in sorted(wanted.items()))
+    units = {"shadow_pool_size": " %s MB", "shadow_resolution_scale": " %g"}
+    return ", ".join(WORDS[name] + units[name] % value for name, value in sorted(wanted.items()))
