@@ -48,6 +48,12 @@ def bench_argv():
     return zip_path, shared, rest
 
 
+def bench_option(name, default):
+    """A bench's `name VALUE` option (e.g. --engine eevee), or `default`."""
+    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    return argv[argv.index(name) + 1] if name in argv else default
+
+
 def bench_args(samples=256):
     """The arguments of the bench/bench_*.py scripts: the zip, then optionally a probe and a sample count."""
     zip_path, _, rest = bench_argv()
