@@ -25,7 +25,7 @@ from .conversion import point_parameters, sun_parameters, sun_strength
 from .errors import ProbeError
 from .lamp_keys import ENERGY_KEY, drive_energy_by_key
 from .light_objects import make_lights
-from .properties import NATIVE_SUN_ANGLES, cut_method
+from .properties import NATIVE_SUN_ANGLES, cut_method, light_count
 from .bake import finish_world, world_source
 from .world_graph import ProbeSource
 from .world_image import WorldRender, sequence_pixels
@@ -142,7 +142,7 @@ def sequence_options(scene, settings, smoothness, exact_energy=True):
     if method not in ("variance", "median-cut"):
         raise ProbeError("Bake animation cuts by variance or median cut: set Method to one of them")
     soft = light_kinds.kind(settings.light_type).soft
-    return {"lights": settings.count, "method": method, "resolution": settings.resolution,
+    return {"lights": light_count(settings, scene.render.engine), "method": method, "resolution": settings.resolution,
             "sun_angles": NATIVE_SUN_ANGLES[settings.shadows] if soft else "points",
             "sun_cones": sun_cones(scene.render.engine, bpy.app.version),
             "sun_profile": sun_profile(bpy.app.version), "refit": bool(settings.refit),
@@ -250,7 +250,7 @@ class AnimationBake:
             self.warnings.append("Bake animation: the lamps take all of the light (a residual world does not move)")
         if settings.count_mode == "TOLERANCE":
             self.warnings.append("Bake animation makes the Count's %d lamps (Max error is for single bakes)"
-                                 % settings.count)
+                                 % self.options["lights"])
         self.next = self.first
         self.frames = []
         # Reading and baking overlap: wall_s is the time from the first step to the last frame baked.

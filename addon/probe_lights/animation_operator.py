@@ -6,7 +6,7 @@ import bpy
 from .animation import AnimationBake, report_line
 from .errors import ProbeError
 from .modal_steps import ModalSteps
-from .properties import SETTING_NAMES, bake_settings, from_panel
+from .properties import SETTING_NAMES, bake_settings, from_panel, given_count
 
 
 class PROBE_LIGHTS_OT_bake_animation(ModalSteps, bpy.types.Operator):
@@ -31,6 +31,7 @@ class PROBE_LIGHTS_OT_bake_animation(ModalSteps, bpy.types.Operator):
     }
 
     def _begin(self, context):
+        given_count(self)
         self._bake = AnimationBake(context, self, self.smoothness, self.frame_start, self.frame_end,
                                    exact_energy=self.exact_energy)
 

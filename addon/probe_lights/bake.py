@@ -18,7 +18,7 @@ from .blender_caps import preset, sun_cones, sun_profile
 from .errors import ProbeError
 from .light_objects import (baked_worlds, make_lights, remove_collection_if_empty, remove_lights, sun_height,
                             world_collection)
-from .properties import NATIVE_SUN_ANGLES, cut_method, cuts
+from .properties import NATIVE_SUN_ANGLES, cut_method, cuts, light_count
 from .world_graph import find_probe
 from .world_image import image_pixels, render_world, sequence_pixels
 from .world_mix import insert_mix, remove_mix, residual_world
@@ -94,9 +94,10 @@ def bake_world(context, settings, progress=lambda fraction: None, rendered=None,
     sources = settings.lamps_take == "SOURCES"
     # With the bright sources, the lamps carry them exactly, as the residual world needs: no refit (the panel
     # greys it out), and the count is chosen.
+    count = light_count(settings, scene.render.engine)
     if sources and max_error > 0:
         warnings.append("The bright sources: %d lamps made (Max error chooses the count for all of the light)"
-                        % settings.count)
+                        % count)
         max_error = 0.0
     # (The refit's limit is the core's: more lights are baked without it, and its note says so.)
     refit = settings.refit and not sources
@@ -105,7 +106,7 @@ def bake_world(context, settings, progress=lambda fraction: None, rendered=None,
     # refit each light sits at its region's energy centroid (energy^2 leans towards the brightest light, which
     # only the refit's colours make up for: docs/results/shadows.md).
     baked = native.bake(pixels, projection=projection, preset=preset(scene.render.engine, bpy.app.version),
-                        method=cut_method(settings.method), lights=settings.count,
+                        method=cut_method(settings.method), lights=count,
                         resolution=settings.resolution, max_error=max_error, nonfinite=settings.non_finite,
                         sun_angles=NATIVE_SUN_ANGLES[settings.shadows] if kind.soft else "points",
                         sun_profile=sun_profile(bpy.app.version), cuts=cuts(settings.method, max_error > 0),
@@ -165,11 +166,12 @@ def finish_world(context, settings, lights, source, residual):
         notes.append("EEVEE: %s so that no shadow is dropped (Restore world puts it back)"
                      % eevee_settings.describe(fitted))
     noise = cycles_settings.noise_note(scene, len(lights))
+    engine = render_cost.engine_of(scene.render.engine, bpy.app.version)
     if noise:
         warnings.append(noise)
-    elif scene.render.engine == "CYCLES" and light_kinds.kind(settings.light_type).render_cost:
+    elif engine is not None and light_kinds.kind(settings.light_type).render_cost:
         # What more suns cost the renders: a note (nothing is wrong with the bake), shown in the panel.
-        advice = render_cost.count_note(len(lights), bpy.app.version)
+        advice = render_cost.count_note(len(lights), bpy.app.version, engine)
         if advice:
             notes.append(advice)
     return notes, warnings

@@ -11,7 +11,7 @@ from .bake import RENDER_WIDTH, bake_world, needs_render, report_lines, restore_
 from .blender_caps import has_eevee_next, preset, sun_profile
 from .errors import ProbeError
 from .modal_steps import ModalSteps
-from .properties import SETTING_NAMES, bake_settings, cut_method, from_panel
+from .properties import SETTING_NAMES, bake_settings, cut_method, from_panel, given_count
 from .world_image import WorldRender
 
 TRADEOFF_COUNTS = [4, 8, 16, 32, 64, 128, 256]
@@ -69,6 +69,7 @@ class PROBE_LIGHTS_OT_bake(bpy.types.Operator):
         return self._bake(context)
 
     def _bake(self, context, rendered=None, render_ms=0.0):
+        given_count(self)
         wm = context.window_manager
         wm.progress_begin(0, 100)
         try:
@@ -159,7 +160,7 @@ class PROBE_LIGHTS_OT_tradeoff(ModalSteps, bpy.types.Operator):
             return
         finally:
             bake.close()
-        settings.tradeoff_frames, settings.tradeoff_frame_lights = last - first + 1, settings.count
+        settings.tradeoff_frames, settings.tradeoff_frame_lights = last - first + 1, bake.options["lights"]
         settings.tradeoff_frame_read_ms = 1000 * bake.read_s
         settings.tradeoff_frame_bake_ms = 1000 * bake.bake_s
         settings.tradeoff_frames_rendered = bake.frames_source.kind == "render"

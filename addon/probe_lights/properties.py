@@ -3,7 +3,7 @@
 import bpy
 from bpy.props import BoolProperty, CollectionProperty, EnumProperty, FloatProperty, IntProperty, StringProperty
 
-from . import core_tables, light_kinds
+from . import core_tables, light_kinds, render_cost
 
 METHODS = core_tables.METHODS  # the core's menu (methodMenu)
 LIGHT_TYPES = light_kinds.enum_items()
@@ -16,9 +16,12 @@ NATIVE_SUN_ANGLES = {"FIT": "fit", "SPREAD": "spread", "HARD": "points"}
 RESOLUTIONS = [("auto", "Auto", "Cuts on a grid at most 2048 pixels wide (exact lights either way)"),
                ("full", "Full", "Cuts at full resolution, as the papers (slower for 4K and larger probes)"),
                ("512", "512", "Cuts on a 512-pixel-wide grid: fastest")]
-COUNT_MODES = [("COUNT", "Count", "Make this many lights"),
+# Numbered as before Engine came first: a file keeps the mode it was saved with.
+COUNT_MODES = [("ENGINE", "Engine", "Make the fewest lights that render as close to the world as more do in this "
+                                    "render engine and Blender, as measured (more only cost render time)", "NONE", 2),
+               ("COUNT", "Count", "Make this many lights", "NONE", 0),
                ("TOLERANCE", "Max error", "Make the fewest lights whose estimated diffuse and shadow error is within the "
-                                          "tolerance")]
+                                          "tolerance", "NONE", 1)]
 LAMPS_TAKE = [("ALL", "All of the light", "The lamps light the scene in place of the world (for the effects below)"),
               ("SOURCES", "The bright sources", "The lamps take only the world's bright sources (the sun, lamps in "
                                                 "it) and cast their shadows; the world keeps the rest of its light, "
@@ -53,7 +56,7 @@ def bake_settings():
         "source_level": FloatProperty(name="Sources above", default=10.0, min=1.0, soft_max=1000.0, max=1.0e6,
                                       description="A pixel brighter than this many times the world's mean "
                                                   "brightness is a source's; the world keeps up to that of it"),
-        "count_mode": EnumProperty(name="Count by", items=COUNT_MODES, default="COUNT"),
+        "count_mode": EnumProperty(name="Count by", items=COUNT_MODES, default="ENGINE"),
         "max_error": FloatProperty(name="Max error", default=2.0, min=0.05, max=50.0, subtype="PERCENTAGE",
                                    description="Largest estimated diffuse/shadow error (relative RMS) to accept"),
         "non_finite": EnumProperty(name="NaN/Inf pixels", items=NON_FINITE, default="error"),
@@ -67,11 +70,29 @@ def bake_settings():
 SETTING_NAMES = tuple(bake_settings())
 
 
+def given_count(operator):
+    """A caller who gives an operator a count and no way to count by (a script: bake(count=16)) gets that many
+    lights, whatever the default or the panel counts by."""
+    if operator.properties.is_property_set("count") and not operator.properties.is_property_set("count_mode"):
+        operator.count_mode = "COUNT"
+
+
 def from_panel(operator, settings):
     """An operator started from a button takes the panel's settings, except those its caller set explicitly."""
+    given_count(operator)
     for name in SETTING_NAMES:
         if not operator.properties.is_property_set(name):
             setattr(operator, name, getattr(settings, name))
+
+
+def engine_count(settings, render_engine):
+    """(count, why) of Count by Engine for a bake of `settings` in `render_engine` (render_cost.default_count)."""
+    return render_cost.default_count(render_engine, bpy.app.version, light_kinds.kind(settings.light_type).render_cost)
+
+
+def light_count(settings, render_engine):
+    """How many lights a bake of `settings` in `render_engine` makes (with Max error: the most it may make)."""
+    return engine_count(settings, render_engine)[0] if settings.count_mode == "ENGINE" else settings.count
 
 
 def cut_method(method):

@@ -6,6 +6,7 @@ import bpy
 from . import cycles_settings, eevee_settings, light_kinds, native, probe_volumes, render_cost
 from .bake import eevee_cones_note, image_changed
 from .light_objects import baked_worlds, world_collection
+from .properties import engine_count
 from .text_fit import fits, wrap
 from .world_mix import has_mix
 
@@ -51,7 +52,11 @@ def draw_panel(layout, context):
     col = layout.column(align=True)
     col.prop(settings, "method", text="")
     col.row(align=True).prop(settings, "count_mode", expand=True)
-    col.prop(settings, "count" if settings.count_mode == "COUNT" else "max_error")
+    if settings.count_mode == "ENGINE":
+        count, why = engine_count(settings, scene.render.engine)
+        _lines(col, "%d lights: %s" % (count, why), width, measure)
+    else:
+        col.prop(settings, "count" if settings.count_mode == "COUNT" else "max_error")
     col = layout.column(align=True)
     col.row(align=True).prop(settings, "light_type", expand=True)
     col.prop(settings, light_kinds.kind(settings.light_type).setting)
@@ -209,20 +214,24 @@ def _click_time(ms):
 
 
 def draw_tradeoff(layout, scene, width, measure):
-    """What accuracy costs, per light count: a whole click's time, in Cycles the render's time as a multiple of the
-    world-lit render's (render_cost.json, measured in this version or the nearest; where the panel is too narrow
+    """What accuracy costs, per light count: a whole click's time, in Cycles and EEVEE Next the render's time as a
+    multiple of the world-lit render's (render_cost.json, measured in this version or the nearest; where the panel is too narrow
     for five columns, as the sidebar at its default width, not shown), and the estimated errors (refit rows when
     the panel's Refit is on); a count's button uses it."""
     settings = scene.probe_lights
     rows = sorted((r for r in settings.tradeoff if r.refit == settings.refit), key=lambda r: r.lights)
     table = [[str(r.lights), _click_time(r.click_ms), _percent(r.diffuse), _percent(r.shadow)] for r in rows]
     header = ""
-    if scene.render.engine == "CYCLES":
-        with_render = [t[:2] + [_times(render_cost.render_factor(r.lights, bpy.app.version))] + t[2:]
+    engine = render_cost.engine_of(scene.render.engine, bpy.app.version)
+    if engine is not None:
+        with_render = [t[:2] + [_times(render_cost.render_factor(r.lights, bpy.app.version, engine))] + t[2:]
                        for r, t in zip(rows, table)]
         if all(fits(text, width / 5 - 6, measure) for t in with_render for text in t[1:]):
             table = with_render
-            header = ", Cycles render time x the world's (%d.%d)" % render_cost.measured_version(bpy.app.version)[:2]
+            # (EEVEE's were measured without a GPU, by Mesa's llvmpipe: a GPU's times differ.)
+            header = ", %s render time x the world's (%d.%d%s)" % (
+                render_cost.ENGINES[engine], *render_cost.measured_version(bpy.app.version, engine)[:2],
+                ", without a GPU" if engine == "eevee" else "")
     box = layout.box()
     col = box.column(align=True)
     _lines(col, "Tradeoff (%s%s): lights, ms per click (world, bake, lamps)%s, estimated diffuse and shadow error %%" % (

@@ -38,6 +38,7 @@ def test_button_bake_then_undo():
     from probe_lights import light_objects
     world = setup_world()
     before = harness.tree_snapshot(world)
+    bpy.context.scene.probe_lights.count_mode = "COUNT"  # (the default counts by the engine)
     bpy.context.scene.probe_lights.count = 12
     with window_override():
         # As the Bake button calls it: invoke, and an undo step pushed (Python calls push none by default).

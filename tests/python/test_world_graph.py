@@ -251,7 +251,7 @@ def test_render_cost_advice_follows_the_running_version():
         assert render_cost.sweet_spot(version) == 32
         assert render_cost.count_note(32, version) == ""
     # noon_grass alone would say 16 in 4.5 (0.26 % against the least 0.25 %): forest's 32 decides.
-    assert render_cost._probe_sweet_spot(render_cost.MEASURED[(4, 5, 15)]["noon_grass"][1]) == 16
+    assert render_cost._probe_sweet_spot(render_cost.MEASURED["cycles"][(4, 5, 15)]["noon_grass"][1]) == 16
     assert render_cost.measured_version((4, 2, 0)) == (4, 5, 15) and render_cost.measured_version((5, 1, 0)) == (5, 0, 1)
     assert render_cost.measured_version((3, 6, 0)) == (3, 4, 1) and render_cost.measured_version((5, 4, 0)) == (5, 3, 0)
     old, new = render_cost.count_note(128, (3, 4, 1)), render_cost.count_note(256, (4, 5, 15))
@@ -259,6 +259,44 @@ def test_render_cost_advice_follows_the_running_version():
     # time with one.
     assert old == "More than 32 suns: noisier renders, no closer in Cycles 3.4", old
     assert new == "More than 32 suns: slower renders, no closer in Cycles 4.5", new
+
+
+def test_the_default_count_follows_the_engine_measured():
+    """Count by Engine: the running engine's sweet spot in the measurements standing for the running Blender (Cycles
+    or EEVEE Next, each measured apart); 64 where nothing stands for the engine or the light kind."""
+    import render_cost
+    for version in ((3, 4, 1), (4, 2, 0), (4, 5, 15), (5, 3, 0)):
+        count, why = render_cost.default_count("CYCLES", version)
+        assert count == render_cost.sweet_spot(version, "cycles") == 32, (version, count)
+        assert why == "more render no closer in Cycles %d.%d" % render_cost.measured_version(version)[:2], why
+    assert render_cost.default_count("CYCLES", (4, 5, 15), measured_kind=False) == (
+        64, "this light type's renders not measured")
+    for engine, version in (("BLENDER_EEVEE", (3, 4, 1)), ("BLENDER_WORKBENCH", (4, 5, 15))):
+        assert render_cost.engine_of(engine, version) is None
+        assert render_cost.default_count(engine, version) == (64, "renders in this engine not measured")
+    for engine, version in (("BLENDER_EEVEE_NEXT", (4, 2, 0)), ("BLENDER_EEVEE_NEXT", (4, 5, 15)),
+                            ("BLENDER_EEVEE", (5, 0, 1)), ("BLENDER_EEVEE", (5, 3, 0))):
+        assert render_cost.engine_of(engine, version) == "eevee"
+        count, why = render_cost.default_count(engine, version)
+        assert count == render_cost.sweet_spot(version, "eevee"), (version, count)
+        assert why == "more render no closer in EEVEE %d.%d" % render_cost.measured_version(version, "eevee")[:2], why
+        best = render_cost.sweet_spot(version, "eevee")
+        assert render_cost.count_note(best, version, "eevee") == ""
+        assert render_cost.count_note(2 * best, version, "eevee").startswith("More than %d suns: slower renders, no "
+                                                                              "closer in EEVEE" % best)
+
+
+def test_a_sweet_spot_weighs_blocks_and_flip_alike():
+    """A count is as close as the closest within 0.1 points by blocks and 0.002 by HDR-FLIP; where none is by both,
+    the one whose farther measure is nearest its best (in those units) is."""
+    import render_cost
+    both = {4: (1.0, 2.0, 0.030), 8: (1.0, 1.05, 0.0215), 16: (1.0, 1.0, 0.020), 32: (1.0, 1.0, 0.020)}
+    assert render_cost._probe_sweet_spot(both) == 8
+    torn = {4: (1.0, 2.0, 0.030), 8: (1.0, 1.0, 0.050), 16: (1.0, 1.5, 0.020)}  # excess 10, 15, 5
+    assert render_cost._probe_sweet_spot(torn) == 16
+    assert render_cost._probe_sweet_spot({4: (1.0, 2.0, None), 8: (1.0, 1.95, None)}) == 4  # blocks alone
+    # EEVEE 5.3 on noon_grass: 8 suns closest by blocks (1.85 %), 4 by FLIP (0.0236); 8's FLIP is 0.0022 off.
+    assert render_cost._probe_sweet_spot(render_cost.MEASURED["eevee"][(5, 3, 0)]["noon_grass"][1]) == 8
 
 
 def test_image_sequence_frames_are_counted_as_blender_counts_them():
@@ -281,7 +319,7 @@ def test_the_tradeoff_shows_the_measured_render_time_per_count():
     """The Tradeoff's render column: a count's Cycles render time over the world-lit render's, the mean of the
     probes measured in the version standing for the running one, straight between measured counts, none outside."""
     import render_cost
-    measured = render_cost.MEASURED[(4, 5, 15)]
+    measured = render_cost.MEASURED["cycles"][(4, 5, 15)]
     at_64 = sum(suns[64][0] / world for world, suns in measured.values()) / len(measured)
     assert abs(render_cost.render_factor(64, (4, 5, 15)) - at_64) < 1e-12
     assert abs(render_cost.render_factor(64, (4, 2, 0)) - at_64) < 1e-12  # 4.2 takes 4.5's measurements

@@ -116,6 +116,35 @@ def test_more_suns_than_pay_off_are_reported_with_this_versions_measurements():
     print("  note at %d suns: %s" % (2 * best, note))
 
 
+def test_the_default_count_follows_the_engine():
+    """Count by Engine (the default): a bake makes the count past which more render no closer in the scene's
+    engine and this Blender (render_cost.json); a script's explicit count wins over it; an engine nothing was
+    measured in (EEVEE Legacy, Workbench) gets 64."""
+    harness.empty_scene()
+    harness.env_world(bpy.data.images.load(harness.BUNDLED_PROBE))
+    scene, render_cost = bpy.context.scene, harness.addon_module("render_cost")
+    settings = scene.probe_lights
+    assert settings.bl_rna.properties["count_mode"].default == "ENGINE"
+    settings.count_mode = "ENGINE"  # (an earlier test's count left it at Count)
+    engines = ["CYCLES", harness.eevee_engine(), "BLENDER_WORKBENCH"]
+    for engine in engines:
+        scene.render.engine = engine
+        count, why = render_cost.default_count(engine, bpy.app.version)
+        assert len(bake()) == count == settings.last_count, (engine, count)
+        assert settings.count_mode == "ENGINE"
+        print("  %s: %d lamps (%s)" % (engine, count, why))
+        if render_cost.engine_of(engine, bpy.app.version) is None:
+            assert count == 64 and why == "renders in this engine not measured", (engine, why)
+        else:
+            assert "no closer" not in settings.last_notes, settings.last_notes  # never past its own advice
+    assert render_cost.default_count("CYCLES", bpy.app.version)[0] == 32  # (Cycles' sweet spot in every version)
+    assert len(bake(count=12)) == 12 and settings.count_mode == "COUNT"  # a script's count wins
+    scene.render.engine = "CYCLES"
+    settings.count_mode = "ENGINE"
+    assert len(bake(light_type="POINT")) == 64  # the point lamps' renders were not measured
+    settings.light_type = "SUN"
+
+
 def test_tradeoff_in_the_panel():
     harness.empty_scene()
     world = harness.env_world(bpy.data.images.load(harness.BUNDLED_PROBE))

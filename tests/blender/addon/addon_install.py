@@ -60,7 +60,7 @@ def test_another_platforms_zip_is_refused_and_the_installed_one_kept():
 def test_panel_draws_at_default_width_in_this_blender():
     """The panel's drawing code in this Blender (fonts, preferences, operators it names), as the World properties
     editor at its default width would call it, after a bake with warnings and a tradeoff: every line fits. In Cycles
-    the Tradeoff's rows carry the measured render time, in EEVEE not."""
+    and EEVEE Next the Tradeoff's rows carry the measured render time, in EEVEE Legacy not."""
     harness.empty_scene()
     scene = bpy.context.scene
     harness.env_world(bpy.data.images.load(harness.BUNDLED_PROBE))
@@ -83,10 +83,16 @@ def test_panel_draws_at_default_width_in_this_blender():
         # the Properties editor (the sidebar shows them where they fit).
         multiples = [t for t in labels if t.endswith("x") and t[:-1].replace(".", "").isdigit()]
         assert len(multiples) == 7 or region_type == "UI", labels
-    scene.render.engine = harness.eevee_engine()  # no render times measured in EEVEE: no column
+    # EEVEE Next's render times were measured too (4.2+); EEVEE Legacy's not: no column.
+    scene.render.engine = harness.eevee_engine()
+    region = type("Region", (), {"type": "WINDOW", "width": 303})()
+    context = type("Context", (), {"scene": scene, "region": region, "preferences": bpy.context.preferences})()
     log = []
     ui.draw_panel(RecordingLayout(log), context)
-    assert not [t for kind, t in log if kind == "label" and t.endswith("x") and t[:-1].replace(".", "").isdigit()]
+    eevee = [t for kind, t in log if kind == "label" and t.endswith("x") and t[:-1].replace(".", "").isdigit()]
+    measured = harness.addon_module("render_cost").engine_of(scene.render.engine, bpy.app.version) is not None
+    assert len(eevee) == (7 if measured else 0), (measured, eevee)
+    assert not ui.OVERFLOW, ui.OVERFLOW
     scene.render.engine = "CYCLES"
-    print("  panel drawn at 303 and 229 px: %d labels, none cut; Cycles render times %s" % (
-        len(labels), " ".join(multiples)))
+    print("  panel drawn at 303 and 229 px: %d labels, none cut; Cycles render times %s; EEVEE's %s" % (
+        len(labels), " ".join(multiples), " ".join(eevee) or "not measured"))
