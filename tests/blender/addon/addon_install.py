@@ -83,16 +83,23 @@ def test_panel_draws_at_default_width_in_this_blender():
         # the Properties editor (the sidebar shows them where they fit).
         multiples = [t for t in labels if t.endswith("x") and t[:-1].replace(".", "").isdigit()]
         assert len(multiples) == 7 or region_type == "UI", labels
-    # EEVEE Next's render times were measured too (4.2+); EEVEE Legacy's not: no column.
+    # EEVEE Next's render times were measured too (4.2+); EEVEE Legacy's not: no column. Count by Engine names
+    # its count in a line that fits.
     scene.render.engine = harness.eevee_engine()
-    region = type("Region", (), {"type": "WINDOW", "width": 303})()
-    context = type("Context", (), {"scene": scene, "region": region, "preferences": bpy.context.preferences})()
-    log = []
-    ui.draw_panel(RecordingLayout(log), context)
-    eevee = [t for kind, t in log if kind == "label" and t.endswith("x") and t[:-1].replace(".", "").isdigit()]
+    scene.probe_lights.count_mode = "ENGINE"
+    for region_type, width in (("UI", 229), ("WINDOW", 303)):
+        region = type("Region", (), {"type": region_type, "width": width})()
+        context = type("Context", (), {"scene": scene, "region": region, "preferences": bpy.context.preferences})()
+        log = []
+        ui.draw_panel(RecordingLayout(log), context)
+        assert not ui.OVERFLOW, (region_type, ui.OVERFLOW)
+        labels = [t for kind, t in log if kind == "label"]
+        assert any(t.startswith("%d lights: " % harness.addon_module("render_cost").default_count(
+            scene.render.engine, bpy.app.version)[0]) for t in labels), labels
+    eevee = [t for t in labels if t.endswith("x") and t[:-1].replace(".", "").isdigit()]
     measured = harness.addon_module("render_cost").engine_of(scene.render.engine, bpy.app.version) is not None
     assert len(eevee) == (7 if measured else 0), (measured, eevee)
-    assert not ui.OVERFLOW, ui.OVERFLOW
     scene.render.engine = "CYCLES"
+    scene.probe_lights.count_mode = "COUNT"
     print("  panel drawn at 303 and 229 px: %d labels, none cut; Cycles render times %s; EEVEE's %s" % (
         len(labels), " ".join(multiples), " ".join(eevee) or "not measured"))
