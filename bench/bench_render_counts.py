@@ -35,6 +35,8 @@ import render_scene  # noqa: E402
 zip_path, probe, samples = harness.bench_args()
 ENGINE = harness.bench_option("--engine", "cycles")
 EEVEE_SAMPLES = 64  # EEVEE's default render samples
+if ENGINE not in ("cycles", "eevee") or (ENGINE == "eevee" and bpy.app.version < (4, 2, 0)):
+    raise SystemExit("--engine is cycles or eevee (EEVEE Next: Blender 4.2 and newer), not %r here" % ENGINE)
 
 harness.install_addon(zip_path)
 harness.empty_scene()

@@ -215,9 +215,9 @@ def _click_time(ms):
 
 def draw_tradeoff(layout, scene, width, measure):
     """What accuracy costs, per light count: a whole click's time, in Cycles and EEVEE Next the render's time as a
-    multiple of the world-lit render's (render_cost.json, measured in this version or the nearest; where the panel is too narrow
-    for five columns, as the sidebar at its default width, not shown), and the estimated errors (refit rows when
-    the panel's Refit is on); a count's button uses it."""
+    multiple of the world-lit render's (render_cost.json, measured in this version or the nearest; where the panel
+    is too narrow for five columns, as the sidebar at its default width, not shown), and the estimated errors
+    (refit rows when the panel's Refit is on); a count's button uses it."""
     settings = scene.probe_lights
     rows = sorted((r for r in settings.tradeoff if r.refit == settings.refit), key=lambda r: r.lights)
     table = [[str(r.lights), _click_time(r.click_ms), _percent(r.diffuse), _percent(r.shadow)] for r in rows]
