@@ -143,6 +143,7 @@ def test_the_default_count_follows_the_engine():
     settings.count_mode = "ENGINE"
     assert len(bake(light_type="POINT")) == 64  # the point lamps' renders were not measured
     settings.light_type = "SUN"
+    assert bpy.ops.probe_lights.restore() == {"FINISHED"}  # EEVEE's settings the EEVEE bake fitted put back
 
 
 def test_tradeoff_in_the_panel():
