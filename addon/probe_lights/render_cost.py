@@ -11,6 +11,7 @@ and held to Cycles' world-lit render with its bounces; every sun adds a shadow (
 count is past the sweet spot when no probe renders measurably closer with more (the bench's resolution: WITHIN),
 and that sweet spot is the count a bake makes by default ("Count by: Engine").
 """
+import functools
 import json
 import os
 
@@ -90,6 +91,11 @@ def _deciding_probe(blender_version, engine="cycles"):
 def sweet_spot(blender_version, engine="cycles"):
     """The fewest suns whose render is as close to the world's as any count measured in that version and engine,
     on every measured probe."""
+    return _sweet_spot(tuple(blender_version), engine)
+
+
+@functools.lru_cache(maxsize=None)  # the panel asks on every redraw; the measurements do not change
+def _sweet_spot(blender_version, engine):
     _, (_, suns) = _deciding_probe(blender_version, engine)
     return _probe_sweet_spot(suns)
 

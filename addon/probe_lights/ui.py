@@ -140,36 +140,36 @@ def _draw_results(layout, context, width, measure):
     _draw_probe_bake(layout, scene, width, measure)
 
 
-def _probe_bake_notes(scene, offer=True):
+def _probe_bake_notes(scene, offered=""):
     """[(line, icon)]: that the probes were baked with other lamps or objects; what EEVEE's light probe bake lacks
-    for the baked suns; with `offer` and no volume probe, the offer of one fitted around the scene."""
-    notes = [(probe_volumes.stale(scene), "INFO"), (probe_volumes.advice(scene), "ERROR")]
-    if offer:
-        notes.append((probe_volumes.offer(scene), "INFO"))
+    for the baked suns; and `offered`, probe_volumes.offer's line, when given."""
+    notes = [(probe_volumes.stale(scene), "INFO"), (probe_volumes.advice(scene), "ERROR"), (offered, "INFO")]
     return [(note, icon) for note, icon in notes if note]
 
 
-def _draw_probe_bake(layout, scene, width, measure, notes=None):
-    """The probe bake's notes (_probe_bake_notes) in a box with the add-on's bake of the probes."""
-    notes = _probe_bake_notes(scene) if notes is None else notes
+def _draw_probe_bake(layout, scene, width, measure, in_blenders_panel=False):
+    """The probe bake's notes (_probe_bake_notes) in a box with the add-on's bake of the probes, and the offer of
+    EEVEE's ray tracing where probe_volumes.offer makes one (asked once a redraw). In Blender's own bake panels
+    (`in_blenders_panel`) the offer's line is left out: they belong to a volume or list the scene's."""
+    offered = probe_volumes.offer(scene)
+    notes = _probe_bake_notes(scene, "" if in_blenders_panel else offered)
     if notes:
         box = layout.box()
         column = box.column(align=True)
         for note, icon in notes:
             _lines(column, note, width - 16, measure, icon=icon)
-        if probe_volumes.offer(scene) and not scene.eevee.use_raytracing:
+        if offered and not scene.eevee.use_raytracing:
             box.operator("probe_lights.eevee_ray_tracing", icon="CHECKMARK")
         box.operator("probe_lights.bake_light_probes", icon="LIGHTPROBE_VOLUME")
 
 
 def _draw_in_blenders_bake(self, context):
     """Appended to Blender's own light probe bake panels: the same notes and button, where the user bakes (not the
-    offer of a volume: these panels belong to a volume or list the scene's)."""
-    notes = _probe_bake_notes(context.scene, offer=False) if context.scene is not None else []
-    if notes:
+    offer of a volume)."""
+    if context.scene is not None:
         region = context.region
         width = 0.95 * ((region.width if region else 300) - 58 * context.preferences.system.ui_scale)
-        _draw_probe_bake(self.layout, context.scene, width, _font_measure(), notes)
+        _draw_probe_bake(self.layout, context.scene, width, _font_measure(), in_blenders_panel=True)
 
 
 # Blender's panels that hold its light probe bake button: the probe's own (Object Data) and the scene's (Render
