@@ -6,16 +6,21 @@ still life of a metal sphere, a glossy and a rough dielectric and a thin rod on 
   EEVEE's own + probe the same (best threshold) with a light probe volume fitted to the scene, baked with the
                       world captured: EEVEE's world shadowed and bounced as well as EEVEE can;
   EEVEE's own + ray tracing   the same (best threshold) with EEVEE's ray tracing instead of the probe;
+  EEVEE's own + sphere + ray tracing   and with a light probe sphere around the scene as the add-on fits it;
   ours                EEVEE with the add-on's default bake (64 suns, baked in EEVEE);
   ours + probe        the same with that volume probe baked by the add-on (Bake light probes with the lamps);
   ours + ray tracing  ours with EEVEE's ray tracing on (screen-traced, Fast GI at its defaults) and no probe;
-  ours + probe + ray tracing   both (what the add-on offers from Blender 5.2: blender_caps.eevee_bounce);
+  ours + sphere + ray tracing  and a light probe sphere around the scene (the panel's Use EEVEE ray tracing and
+                      reflections: what the add-on offers up to Blender 5.1, blender_caps.eevee_bounce);
+  ours + probe + ray tracing   the volume probe and ray tracing, no sphere;
+  ours + probe + sphere + ray tracing   all three (what the add-on offers from Blender 5.2);
   sources + residual + probe   the lamps of the bright sources and the residual world (Lamps take: The bright
                       sources), the probe baked: EEVEE's world masked by the probe's visibility (issue 52, item 3).
 Each is given as HDR-FLIP's mean (flip-evaluator), the per-pixel and the 8x8-block luminance difference
 (render_scene.render_errors), with the render's seconds; the first row of each probe is the truth's own noise
 (Cycles against itself with another seed). With a picture directory, one row per probe: the truth, EEVEE's own
-(best threshold, + probe), ours + probe, ours + ray tracing, sources + residual + probe, and their FLIP maps.
+(best threshold, + ray tracing), ours + probe, ours + sphere + ray tracing, sources + residual + probe, and
+their FLIP maps.
 
     tests/blender/run.sh --gl ~/.cache/probelights/bpy-4.5.15/bin/python bench/bench_eevee_rivals.py \\
         build/probe_lights-0.1.0-linux_x64.zip ../shared [sphere|still-life] [PROBES] [PICTURE_DIR]
@@ -108,6 +113,9 @@ for PROBE in PROBES:
     scene.eevee.use_raytracing = True  # as below for ours: EEVEE's ray tracing and Fast GI, no probe
     own_traced, seconds = timed_render()
     row("EEVEE's own + ray tracing", truth, own_traced, seconds)
+    sphere = volumes.fit_sphere(scene)  # as a user would add one (EEVEE captures it at render time: no bake)
+    row("EEVEE's own + sphere + ray tracing", truth, *timed_render())
+    volumes.remove_fitted(sphere)
     scene.eevee.use_raytracing = False
     volume = fitted_volume(scene, capture_world=True)
     start = time.perf_counter()
@@ -128,6 +136,11 @@ for PROBE in PROBES:
     scene.eevee.use_raytracing = True
     ours_traced, seconds = timed_render()
     row("ours + ray tracing", truth, ours_traced, seconds)
+    assert bpy.ops.probe_lights.eevee_ray_tracing() == {"FINISHED"}  # adds the sphere
+    [sphere] = volumes.sphere_probes(scene)
+    ours_reflected, seconds = timed_render()
+    row("ours + sphere + ray tracing", truth, ours_reflected, seconds)
+    volumes.remove_fitted(sphere)
     scene.eevee.use_raytracing = False
     fitted_volume(scene, capture_world=False)
     start = time.perf_counter()
@@ -137,6 +150,8 @@ for PROBE in PROBES:
     row("ours + probe", truth, ours_probe, seconds, " (bake %.0f s)" % bake_s)
     scene.eevee.use_raytracing = True  # both: farther than either up to 5.0, closest from 5.2 (blender_caps)
     row("ours + probe + ray tracing", truth, *timed_render())
+    volumes.fit_sphere(scene)
+    row("ours + probe + sphere + ray tracing", truth, *timed_render())
     scene.eevee.use_raytracing = False
 
     scene = build(PROBE)
@@ -152,14 +167,16 @@ for PROBE in PROBES:
     if PICTURES:
         os.makedirs(PICTURES, exist_ok=True)
         name = os.path.splitext(os.path.basename(PROBE))[0]
-        render_scene.save_png(np.concatenate([truth, own_probe, ours_probe, ours_traced, residual], axis=1),
+        render_scene.save_png(np.concatenate([truth, own_traced, ours_probe, ours_reflected, residual], axis=1),
                               os.path.join(PICTURES, "%s_%s.png" % (SCENE, name)))
         maps = np.concatenate([render_scene.flip(truth, p, picture=True)
-                               for p in (own_probe, ours_probe, ours_traced, residual)], axis=1)
+                               for p in (own_traced, ours_probe, ours_reflected, residual)], axis=1)
         render_scene.save_png(maps, os.path.join(PICTURES, "%s_%s_flip.png" % (SCENE, name)), display=True)
 print("\nHDR-FLIP / block difference:\n")
 names = ["Cycles, another seed", "EEVEE's own, threshold 10", "EEVEE's own, best threshold", "EEVEE's own + probe",
-         "EEVEE's own + ray tracing", "ours", "ours + probe", "ours + ray tracing", "ours + probe + ray tracing",
+         "EEVEE's own + ray tracing", "EEVEE's own + sphere + ray tracing", "ours", "ours + probe",
+         "ours + ray tracing", "ours + sphere + ray tracing", "ours + probe + ray tracing",
+         "ours + probe + sphere + ray tracing",
          "sources + residual + probe"]
 print("| probe | " + " | ".join(names) + " |")
 print("|---" * (len(names) + 1) + "|")

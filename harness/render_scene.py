@@ -276,11 +276,13 @@ def block_difference(world_lit, light_lit):
 
 
 def pixel_difference(world_lit, light_lit):
-    """Sum over the lit object pixels (lit_blocks' rule, pixel by pixel) of |lights - world| / the sum of world
-    (luminance): unlike the block means it sees a shadow's edge in the wrong place, and noise."""
-    ya, yb = world_lit[..., :3] @ LUM, light_lit[..., :3] @ LUM
-    solid = world_lit[..., 3] > 0.999
-    lit = solid & (ya > 0.02 * ya[solid].max())
+    """Sum over the pixels of the lit blocks (lit_blocks) of |lights - world| / the sum of world (luminance):
+    unlike the block means it sees a shadow's edge in the wrong place, and noise. The pixels of the lit blocks, not
+    those above 2 % of the brightest pixel: on the still life one sun's glint on the metal ball, 250 times the
+    median pixel, left 44 of its 13,208 object pixels to compare."""
+    lit = np.repeat(np.repeat(lit_blocks(world_lit), BLOCK, axis=0), BLOCK, axis=1)
+    h, w = lit.shape
+    ya, yb = world_lit[:h, :w, :3] @ LUM, light_lit[:h, :w, :3] @ LUM
     return float(np.abs(yb[lit] - ya[lit]).sum() / ya[lit].sum())
 
 

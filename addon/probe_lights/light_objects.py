@@ -24,7 +24,8 @@ COLLECTION_TAG = "probe_lights_collection"
 WORLD_KEY = "probe_lights_world"  # on the collection: the world it was baked from (an ID pointer)
 OBJECT_TAG = "probe_lights"
 RIG_TAG = "probe_lights_rig"
-VOLUME_TAG = "probe_lights_volume"  # a light probe volume the add-on fitted (probe_volumes.py): Restore removes it
+VOLUME_TAG = "probe_lights_volume"  # a light probe (volume or sphere) the add-on fitted (probe_volumes.py): Restore
+# removes it
 COLLECTION_NAME = "Probe Lights: %s"
 SUN_SCALE = 0.1  # a sun's object scale: its light does not change, its viewport line is a tenth as long
 NOT_SCENERY = {"LIGHT", "CAMERA", "EMPTY", "SPEAKER", "LIGHT_PROBE", "LIGHTPROBE"}

@@ -286,22 +286,35 @@ class PROBE_LIGHTS_OT_eevee_settings(bpy.types.Operator):
 
 
 class PROBE_LIGHTS_OT_eevee_ray_tracing(bpy.types.Operator):
-    """Turn on EEVEE's ray tracing: its Fast GI bounces the lamps' light from what is on screen (up to Blender 5.1
-    closest to Cycles alone, from 5.2 with a light probe volume); Restore world turns it off again"""
+    """Turn on EEVEE's ray tracing and add a light probe sphere around the scene: its Fast GI bounces the lamps'
+    light from what is on screen (up to Blender 5.1 closest to Cycles alone, from 5.2 with a light probe volume),
+    the sphere reflects the lit scene where the screen cannot; Restore world takes both back"""
 
     bl_idname = "probe_lights.eevee_ray_tracing"
-    bl_label = "Use EEVEE ray tracing"
+    bl_label = "Use EEVEE ray tracing and reflections"
     bl_options = {"REGISTER", "UNDO"}
+
+    ray_tracing: bpy.props.BoolProperty(
+        name="Ray tracing", default=True, options={"SKIP_SAVE"},
+        description="Turn on EEVEE's ray tracing too (off: the light probe sphere alone)")
 
     @classmethod
     def poll(cls, context):
         return context.scene is not None and eevee_settings.eevee_next(context.scene)
 
     def execute(self, context):
-        if eevee_settings.use_ray_tracing(context.scene):
-            self.report({"INFO"}, "EEVEE: ray tracing on (Restore world turns it off)")
+        scene = context.scene
+        done = ["ray tracing on"] if self.ray_tracing and eevee_settings.use_ray_tracing(scene) else []
+        if not probe_volumes.sphere_probes(scene):
+            try:
+                probe_volumes.fit_sphere(scene)
+                done.append("a light probe sphere around the scene")
+            except ValueError:  # no objects: nothing to reflect
+                pass
+        if done:
+            self.report({"INFO"}, "EEVEE: %s (Restore world takes it back)" % " and ".join(done))
         else:
-            self.report({"INFO"}, "EEVEE's ray tracing is already on")
+            self.report({"INFO"}, "EEVEE already traces rays and has a light probe sphere")
         return {"FINISHED"}
 
 

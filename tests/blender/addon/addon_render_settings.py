@@ -124,10 +124,13 @@ def test_light_probes_baked_here_are_flagged_when_the_lamps_or_objects_change():
 
 
 def test_eevee_ray_tracing_offered_for_the_lamps_bounce_and_restore():
-    """EEVEE Next (4.2+) bounces no light by itself: with baked suns the panel offers what comes closest to Cycles
-    in this Blender (blender_caps.eevee_bounce): up to 5.1 its ray tracing alone (and a warning when a light probe
-    volume is there too), from 5.2 a volume baked with the lamps and ray tracing. Restore world turns off the ray
-    tracing it turned on; ray tracing the user turned on stays on. Nothing outside EEVEE Next."""
+    """EEVEE Next (4.2+) bounces no light by itself, and with all of the light in the lamps reflects none off the
+    screen: with baked suns the panel offers what comes closest to Cycles in this Blender
+    (blender_caps.eevee_bounce): up to 5.1 its ray tracing alone (and a warning when a light probe volume is there
+    too), from 5.2 a volume baked with the lamps and ray tracing; and in both a light probe sphere around the
+    scene, which the same button adds. Restore world turns off the ray tracing it turned on and takes the sphere
+    out; ray tracing the user turned on stays on, and then the panel offers the sphere alone. Nothing outside
+    EEVEE Next."""
     scene, _, _, volumes = _cube_lit_by_8_suns()
     if bpy.app.version < (4, 2, 0):
         assert volumes.offer(scene) == ""
@@ -138,11 +141,18 @@ def test_eevee_ray_tracing_offered_for_the_lamps_bounce_and_restore():
     scene.eevee.use_raytracing = False
     traced_alone = harness.addon_module("blender_caps").eevee_bounce(bpy.app.version) == "ray tracing"
     offer = volumes.offer(scene)
-    assert offer.startswith("EEVEE bounces no light by itself: turn on its ray tracing" if traced_alone else
+    assert offer.startswith("EEVEE bounces no light by itself and reflects none of the lamps': turn on its ray "
+                            "tracing with a light probe sphere" if traced_alone else
                             "EEVEE bounces no light without a light probe volume"), offer
-    assert "ray tracing" in offer, offer
+    assert "ray tracing with a light probe sphere" in offer, offer
+    assert not volumes.sphere_probes(scene)
     assert bpy.ops.probe_lights.eevee_ray_tracing() == {"FINISHED"}
     assert scene.eevee.use_raytracing
+    [sphere] = volumes.sphere_probes(scene)
+    assert sphere.get(harness.addon_module("light_objects").VOLUME_TAG)
+    cube = next(o for o in scene.objects if o.type == "MESH")
+    far = max((cube.matrix_world @ v.co - sphere.location).length for v in cube.data.vertices)
+    assert far <= sphere.data.influence_distance <= 1.2 * far, (far, sphere.data.influence_distance)
     assert volumes.offer(scene) == "" if traced_alone else volumes.offer(scene).endswith("with the lamps"), \
         volumes.offer(scene)
     bpy.ops.object.lightprobe_add(type="VOLUME")  # a volume with ray tracing: too much up to 5.1, best from 5.2
@@ -150,11 +160,18 @@ def test_eevee_ray_tracing_offered_for_the_lamps_bounce_and_restore():
         volumes.offer(scene)
     bpy.data.objects.remove(bpy.context.object)
     assert bpy.ops.probe_lights.eevee_ray_tracing() == {"FINISHED"}  # again: nothing more to do
+    assert len(volumes.sphere_probes(scene)) == 1
     done = harness.addon_module("bake").restore_world(scene, scene.world)
     assert "EEVEE ray tracing back" in done and not scene.eevee.use_raytracing, done
-    # The user's own ray tracing is the user's: a bake and its restore leave it on.
+    assert not volumes.sphere_probes(scene)
+    # The user's own ray tracing is the user's: a bake and its restore leave it on. Up to 5.1 that bounces as it
+    # should: the panel offers the sphere alone.
     scene.eevee.use_raytracing = True
     bake(count=8)
+    if traced_alone:
+        assert volumes.offer(scene) == volumes.REFLECTIONS, volumes.offer(scene)
+        assert bpy.ops.probe_lights.eevee_ray_tracing(ray_tracing=False) == {"FINISHED"}
+        assert volumes.offer(scene) == "" and len(volumes.sphere_probes(scene)) == 1
     assert bpy.ops.probe_lights.restore() == {"FINISHED"}
     assert scene.eevee.use_raytracing
     scene.eevee.use_raytracing = False
