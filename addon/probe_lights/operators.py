@@ -305,16 +305,17 @@ class PROBE_LIGHTS_OT_eevee_ray_tracing(bpy.types.Operator):
     def execute(self, context):
         scene = context.scene
         done = ["ray tracing on"] if self.ray_tracing and eevee_settings.use_ray_tracing(scene) else []
+        nothing = ""
         if not probe_volumes.sphere_probes(scene):
             try:
                 probe_volumes.fit_sphere(scene)
                 done.append("a light probe sphere around the scene")
-            except ValueError:  # no objects: nothing to reflect
-                pass
+            except ValueError as e:  # no objects: nothing to reflect
+                nothing = str(e)
         if done:
             self.report({"INFO"}, "EEVEE: %s (Restore world takes it back)" % " and ".join(done))
         else:
-            self.report({"INFO"}, "EEVEE already traces rays and has a light probe sphere")
+            self.report({"INFO"}, "EEVEE: %s" % (nothing or "ray tracing on and a light probe sphere already"))
         return {"FINISHED"}
 
 

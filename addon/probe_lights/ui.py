@@ -163,7 +163,7 @@ def _draw_probe_bake(layout, scene, width, measure, in_blenders_panel=False):
             box.operator("probe_lights.eevee_ray_tracing", icon="CHECKMARK",
                          text="Add a light probe sphere").ray_tracing = False
         elif offered and not (traced and reflected):
-            text = "Use EEVEE ray tracing" if reflected else ""
+            text = "Add a light probe sphere" if traced else "Use EEVEE ray tracing" if reflected else ""
             box.operator("probe_lights.eevee_ray_tracing", icon="CHECKMARK", **({"text": text} if text else {}))
         box.operator("probe_lights.bake_light_probes", icon="LIGHTPROBE_VOLUME")
 
