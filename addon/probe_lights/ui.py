@@ -158,13 +158,15 @@ def _draw_probe_bake(layout, scene, width, measure, in_blenders_panel=False):
         column = box.column(align=True)
         for note, icon in notes:
             _lines(column, note, width - 16, measure, icon=icon)
-        traced, reflected = scene.eevee.use_raytracing, bool(probe_volumes.sphere_probes(scene))
         if offered == probe_volumes.REFLECTIONS:  # the bounce is as it should be: the sphere alone
             box.operator("probe_lights.eevee_ray_tracing", icon="CHECKMARK",
                          text="Add a light probe sphere").ray_tracing = False
-        elif offered and not (traced and reflected):
-            text = "Add a light probe sphere" if traced else "Use EEVEE ray tracing" if reflected else ""
-            box.operator("probe_lights.eevee_ray_tracing", icon="CHECKMARK", **({"text": text} if text else {}))
+        elif offered:  # only EEVEE Next has an offer, and ray tracing
+            traced, reflected = scene.eevee.use_raytracing, bool(probe_volumes.sphere_probes(scene))
+            if not (traced and reflected):
+                text = "Add a light probe sphere" if traced else "Use EEVEE ray tracing" if reflected else ""
+                box.operator("probe_lights.eevee_ray_tracing", icon="CHECKMARK",
+                             **({"text": text} if text else {}))
         box.operator("probe_lights.bake_light_probes", icon="LIGHTPROBE_VOLUME")
 
 
