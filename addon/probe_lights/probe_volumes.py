@@ -152,8 +152,8 @@ def offer(scene):
                    ", and turn on its ray tracing with a light probe sphere (all: closest to Cycles in Blender %s)"
                    % version))
     if not traced:
-        return ("With the light probe volume, EEVEE's ray tracing and a light probe sphere come closer to Cycles in "
-                "Blender %s" % version)
+        return ("With the light probe volume, EEVEE's ray tracing %s closer to Cycles in Blender %s"
+                % ("comes" if reflected else "and a light probe sphere come", version))
     return "" if reflected else REFLECTIONS
 
 
