@@ -76,13 +76,18 @@ def advice(scene):
 VOLUME_MARGIN, VOLUME_CELLS = 1.05, 4
 
 
+def _objects_box(scene, what):
+    """The box around the scene's rendered objects; ValueError naming `what` when there are none."""
+    box = scene_box(scene, rendered_only=True)
+    if box is None:
+        raise ValueError("the scene has no objects for %s" % what)
+    return box
+
+
 def fit_volume(scene):
     """A light probe volume around the scene's rendered objects, in the lamps' collection (Restore removes it).
     Raises ValueError when the scene has no objects."""
-    box = scene_box(scene, rendered_only=True)
-    if box is None:
-        raise ValueError("the scene has no objects for a light probe volume to hold")
-    lo, hi = box
+    lo, hi = _objects_box(scene, "a light probe volume to hold")
     half = [max(0.25, (b - a) / 2) * VOLUME_MARGIN for a, b in zip(lo, hi)]
     data = bpy.data.lightprobes.new("Probe Lights volume", "VOLUME")
     data.resolution_x = data.resolution_y = data.resolution_z = VOLUME_CELLS
@@ -102,10 +107,7 @@ def fit_volume(scene):
 def fit_sphere(scene):
     """A light probe sphere at the centre of the scene's rendered objects, its influence over all of them, in the
     lamps' collection (Restore removes it). Raises ValueError when the scene has no objects."""
-    box = scene_box(scene, rendered_only=True)
-    if box is None:
-        raise ValueError("the scene has no objects for a light probe sphere to reflect")
-    lo, hi = box
+    lo, hi = _objects_box(scene, "a light probe sphere to reflect")
     radius = max(0.25, math.dist(tuple(lo), tuple(hi)) / 2) * VOLUME_MARGIN
     data = bpy.data.lightprobes.new("Probe Lights reflections", "SPHERE")
     data.influence_distance = radius
