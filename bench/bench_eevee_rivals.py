@@ -56,15 +56,9 @@ def build(probe):
 
 
 def fitted_volume(scene, capture_world):
-    """A light probe volume around the scene's objects (their bounds, 5 % more) at EEVEE's default resolution (4
-    cells a side: 16 a side around the still life took 275-349 s to bake on 2 cores, 4 a side 10-15 s)."""
-    corners = np.array([tuple(o.matrix_world @ v.co) for o in scene.objects if o.type == "MESH"
-                        for v in o.data.vertices])
-    lo, hi = corners.min(axis=0), corners.max(axis=0)
-    half = np.maximum((hi - lo) / 2, 0.25) * 1.05
-    bpy.ops.object.lightprobe_add(type="VOLUME", location=tuple((lo + hi) / 2))
-    volume = bpy.context.object
-    volume.scale = tuple(half)
+    """The light probe volume the add-on fits around the scene (probe_volumes.fit_volume: the objects' bounds, 5 %
+    more, EEVEE's default 4 cells a side), with the world captured or not."""
+    volume = volumes.fit_volume(scene)
     volume.data.capture_world = capture_world
     return volume
 
@@ -123,7 +117,7 @@ for PROBE in PROBES:
     bake_s = time.perf_counter() - start
     own_probe, seconds = timed_render()
     row("EEVEE's own + probe", truth, own_probe, seconds, " (bake %.0f s)" % bake_s)
-    bpy.data.objects.remove(volume)
+    volumes.remove_fitted(volume)
 
     scene = build(PROBE)
     scene.render.engine = eevee

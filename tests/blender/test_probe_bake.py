@@ -139,8 +139,9 @@ def _drawn_in_the_panel(scene):
 def test_a_volume_is_fitted_around_the_scene_when_there_is_none():
     """With baked suns in EEVEE and no light probe volume, the panel offers one: the bake adds it around the
     scene's rendered objects (in the lamps' collection), bakes it with the lamps (the lit objects brighter by their
-    bounce light), and Restore world takes it out with the lamps. A bake that fails leaves no volume behind. An
-    object moved after the bake: the panels (the add-on's and Blender's bake panel) offer the bake again."""
+    bounce light; undo takes it back, redo brings it baked), and Restore world takes it out with the lamps. A
+    bake that fails leaves no volume behind. An object moved after the bake: the panels (the add-on's and
+    Blender's bake panel) offer the bake again."""
     scene = _baked_scene(16, 96, 72)
     volumes = harness.addon_module("probe_volumes")
     assert volumes.offer(scene) and not volumes.volume_probes(scene)
@@ -165,7 +166,15 @@ def test_a_volume_is_fitted_around_the_scene_when_there_is_none():
     assert not volumes.volume_probes(scene) and set(bpy.data.lightprobes) == probe_data, \
         "a failed bake leaves nothing behind"
 
-    assert bpy.ops.probe_lights.bake_light_probes() == {"FINISHED"}
+    # As the panel's button runs it (an undo step): undo takes the volume and the bake back, redo brings both (the
+    # render below is made after the redo: its bounce light is the baked data's).
+    bpy.ops.ed.undo_push(message="before the bake of the probes")
+    assert bpy.ops.probe_lights.bake_light_probes("EXEC_DEFAULT", True) == {"FINISHED"}
+    assert bpy.ops.ed.undo() == {"FINISHED"}
+    scene = bpy.context.scene  # an undo reloads the data: old references are gone
+    assert not volumes.volume_probes(scene) and volumes.BAKED_KEY not in scene
+    assert bpy.ops.ed.redo() == {"FINISHED"}
+    scene = bpy.context.scene
     [volume] = volumes.volume_probes(scene)
     assert volume.get(harness.addon_module("light_objects").VOLUME_TAG)
     assert not volumes.stale(scene)

@@ -128,9 +128,9 @@ def test_eevee_ray_tracing_offered_for_the_lamps_bounce_and_restore():
     screen: with baked suns the panel offers what comes closest to Cycles in this Blender
     (blender_caps.eevee_bounce): up to 5.1 its ray tracing alone (and a warning when a light probe volume is there
     too), from 5.2 a volume baked with the lamps and ray tracing; and in both a light probe sphere around the
-    scene, which the same button adds. Restore world turns off the ray tracing it turned on and takes the sphere
-    out; ray tracing the user turned on stays on, and then the panel offers the sphere alone. Nothing outside
-    EEVEE Next."""
+    scene, which the same button adds (undo takes both back, redo brings them). Restore world turns off the ray
+    tracing it turned on and takes the sphere out; ray tracing the user turned on stays on, and then the panel
+    offers the sphere alone. Nothing outside EEVEE Next."""
     scene, _, _, volumes = _cube_lit_by_8_suns()
     if bpy.app.version < (4, 2, 0):
         assert volumes.offer(scene) == ""
@@ -146,7 +146,16 @@ def test_eevee_ray_tracing_offered_for_the_lamps_bounce_and_restore():
                             "EEVEE bounces no light without a light probe volume"), offer
     assert "ray tracing with a light probe sphere" in offer, offer
     assert not volumes.sphere_probes(scene)
-    assert bpy.ops.probe_lights.eevee_ray_tracing() == {"FINISHED"}
+    # As the button runs it (an undo step): undo takes the click back whole, redo brings it back.
+    bpy.ops.ed.undo_push(message="before the click")
+    assert bpy.ops.probe_lights.eevee_ray_tracing("EXEC_DEFAULT", True) == {"FINISHED"}
+    assert bpy.ops.ed.undo() == {"FINISHED"}
+    scene = bpy.context.scene  # an undo reloads the data: old references are gone
+    assert not scene.eevee.use_raytracing and not volumes.sphere_probes(scene)
+    assert bpy.ops.ed.redo() == {"FINISHED"}
+    scene = bpy.context.scene
+    assert scene.eevee.use_raytracing and len(volumes.sphere_probes(scene)) == 1
+    assert bpy.ops.probe_lights.eevee_ray_tracing() == {"FINISHED"}  # nothing more to do
     assert scene.eevee.use_raytracing
     [sphere] = volumes.sphere_probes(scene)
     assert sphere.get(harness.addon_module("light_objects").VOLUME_TAG)
@@ -159,7 +168,7 @@ def test_eevee_ray_tracing_offered_for_the_lamps_bounce_and_restore():
     assert volumes.offer(scene).endswith("turn one off") if traced_alone else volumes.offer(scene) == "", \
         volumes.offer(scene)
     bpy.data.objects.remove(bpy.context.object)
-    assert bpy.ops.probe_lights.eevee_ray_tracing() == {"FINISHED"}  # again: nothing more to do
+    assert bpy.ops.probe_lights.eevee_ray_tracing() == {"FINISHED"}  # again
     assert len(volumes.sphere_probes(scene)) == 1
     done = harness.addon_module("bake").restore_world(scene, scene.world)
     assert "EEVEE ray tracing back" in done and not scene.eevee.use_raytracing, done
