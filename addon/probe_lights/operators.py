@@ -350,11 +350,12 @@ class PROBE_LIGHTS_OT_bake_light_probes(bpy.types.Operator):
                 probe_volumes.remove_fitted(fitted)
             self.report({"ERROR"}, "Light probe bake failed: %s" % str(e).strip().splitlines()[-1])
             return {"CANCELLED"}
-        probe_volumes.remember(scene)
+        seconds = time.perf_counter() - start
+        probe_volumes.remember(scene, seconds)
         merged = " (as %d for their shadows in the bake)" % seen if seen < suns else ""
         added = "Added a light probe volume around the scene and baked it" if fitted else (
             "Baked %d light probe volumes" % len(probe_volumes.volume_probes(scene)))
-        self.report({"INFO"}, "%s with %d suns%s in %.1f s" % (added, suns, merged, time.perf_counter() - start))
+        self.report({"INFO"}, "%s with %d suns%s in %.1f s" % (added, suns, merged, seconds))
         return {"FINISHED"}
 
 

@@ -140,10 +140,16 @@ def _draw_results(layout, context, width, measure):
     _draw_probe_bake(layout, scene, width, measure)
 
 
-def _probe_bake_notes(scene, offered=""):
+def _probe_bake_notes(scene, offered="", in_blenders_panel=False):
     """[(line, icon)]: that the probes were baked with other lamps or objects; what EEVEE's light probe bake lacks
-    for the baked suns; and `offered`, probe_volumes.offer's line, when given."""
-    notes = [(probe_volumes.stale(scene), "INFO"), (probe_volumes.advice(scene), "ERROR"), (offered, "INFO")]
+    for the baked suns (in the add-on's panel not while its own bake holds: that line is for Blender's bake
+    button); `offered`, probe_volumes.offer's line, when given; and what the bake costs (shown with the other
+    notes, beside the bake button)."""
+    stale = probe_volumes.stale(scene)
+    held = not in_blenders_panel and not stale and probe_volumes.BAKED_KEY in scene
+    notes = [(stale, "INFO"), ("" if held else probe_volumes.advice(scene), "ERROR"), (offered, "INFO")]
+    if any(note for note, _ in notes):
+        notes.append((probe_volumes.cost(scene), "TIME"))
     return [(note, icon) for note, icon in notes if note]
 
 
@@ -152,7 +158,7 @@ def _draw_probe_bake(layout, scene, width, measure, in_blenders_panel=False):
     EEVEE's ray tracing where probe_volumes.offer makes one (asked once a redraw). In Blender's own bake panels
     (`in_blenders_panel`) the offer's line is left out: they belong to a volume or list the scene's."""
     offered = probe_volumes.offer(scene)
-    notes = _probe_bake_notes(scene, "" if in_blenders_panel else offered)
+    notes = _probe_bake_notes(scene, "" if in_blenders_panel else offered, in_blenders_panel)
     if notes:
         box = layout.box()
         column = box.column(align=True)

@@ -136,17 +136,23 @@ def _drawn_in_the_panel(scene):
     return layout.placed
 
 
+def _panel_text(scene):
+    """The panel's lines of the probe bake, joined as they read."""
+    return " ".join(text for kind, text in _drawn_in_the_panel(scene) if kind == "label")
+
+
 def test_a_volume_is_fitted_around_the_scene_when_there_is_none():
     """With baked suns in EEVEE and no light probe volume, the panel offers one: the bake adds it around the
     scene's rendered objects (in the lamps' collection), bakes it with the lamps (the lit objects brighter by their
-    bounce light; undo takes it back, redo brings it baked), and Restore world takes it out with the lamps. A
-    bake that fails leaves no volume behind. An object moved after the bake: the panels (the add-on's and
-    Blender's bake panel) offer the bake again."""
+    bounce light; undo takes it back, redo brings it baked; the panel says its cells, bytes and seconds), and
+    Restore world takes it out with the lamps. A bake that fails leaves no volume behind. An object moved after
+    the bake: the panels (the add-on's and Blender's bake panel) offer the bake again."""
     scene = _baked_scene(16, 96, 72)
     volumes = harness.addon_module("probe_volumes")
     assert volumes.offer(scene) and not volumes.volume_probes(scene)
     assert ("operator", "probe_lights.bake_light_probes") in _drawn_in_the_panel(scene)
     assert ("operator", "probe_lights.eevee_ray_tracing") in _drawn_in_the_panel(scene)
+    assert "The bake adds a volume of 64 cells (5 KB in the file)" in _panel_text(scene)  # what it costs
     lamps_only = render_scene.render()
 
     real_bake = volumes.bake
@@ -184,6 +190,11 @@ def test_a_volume_is_fitted_around_the_scene_when_there_is_none():
     assert offer == volumes.REFLECTIONS if bpy.app.version < (5, 2, 0) else offer.startswith(
         "With the light probe volume, EEVEE's ray tracing and a light probe sphere"), offer
     assert not any("changed since" in text for _, text in _drawn_in_the_panel(scene))
+    print("  the panel: %s" % _panel_text(scene))
+    assert "Light probe volume: 64 cells, 5 KB in the file; the last bake here took" in _panel_text(scene)
+    # The add-on's bake holds: the warning that EEVEE's own bake drops the suns' shadows stays in Blender's panel.
+    assert "drops shadows" not in _panel_text(scene)
+    assert "drops shadows" in " ".join(text for kind, text in _drawn_in_blenders_bake_panel() if kind == "label")
     sphere = max((o for o in scene.objects if o.type == "MESH"), key=lambda o: len(o.data.vertices))
     sphere.location.z += 0.25  # moved after the bake: the panels say so beside the bake
     bpy.context.view_layer.update()
@@ -191,6 +202,7 @@ def test_a_volume_is_fitted_around_the_scene_when_there_is_none():
     for drawn in (_drawn_in_the_panel(scene), _drawn_in_blenders_bake_panel()):
         assert any(text.startswith("The objects changed") for _, text in drawn), drawn
         assert ("operator", "probe_lights.bake_light_probes") in drawn
+    assert "drops shadows" in _panel_text(scene)  # the bake no longer holds
     sphere.location.z -= 0.25
     bpy.context.view_layer.update()
     assert not volumes.stale(scene)

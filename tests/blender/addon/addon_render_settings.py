@@ -93,28 +93,34 @@ def test_light_probes_baked_here_are_flagged_when_the_lamps_or_objects_change():
     """After the add-on's bake of EEVEE's light probes (stood in for by what it records after a bake: EEVEE's own
     bake needs OpenGL, test_probe_bake.py bakes for real), the panel says in one line when they no longer hold the
     scene's bounce light, and offers the bake again: the lamps baked again, the world's strength changed (the
-    lamps follow it), an object moved, a lamp of the user's added. Not before the add-on's first bake, not outside EEVEE."""
+    lamps follow it), an object moved, a lamp of the user's added. Not before the add-on's first bake, not outside
+    EEVEE. Beside the bake: its cost (the volumes' cells, their bytes in the file, the last bake's seconds)."""
     scene, world, cube, volumes = _cube_lit_by_8_suns()
     if bpy.app.version < (4, 2, 0):
         assert volumes.stale(scene) == ""
         print("  skipped: EEVEE Legacy (Blender %s) bakes no light probe volumes this way" % bpy.app.version_string)
         return
     scene.render.engine = harness.eevee_engine()
+    assert volumes.cost(scene) == "The bake adds a volume of 64 cells (5 KB in the file)", volumes.cost(scene)
     bpy.ops.object.lightprobe_add(type="VOLUME")
     assert volumes.stale(scene) == ""  # never baked here: Blender's own bake may have been used
-    volumes.remember(scene)
+    assert volumes.cost(scene) == "Light probe volume: 64 cells, 5 KB in the file", volumes.cost(scene)
+    volumes.remember(scene, 8.25)
     assert volumes.stale(scene) == ""
+    assert volumes.cost(scene).endswith("5 KB in the file; the last bake here took 8.2 s"), volumes.cost(scene)
+    bpy.context.object.data.resolution_x = 8  # what the panel shows follows the volume's cells
+    assert volumes.cost(scene).startswith("Light probe volume: 128 cells, 9 KB"), volumes.cost(scene)
     bake(count=4)
     assert volumes.stale(scene).startswith("The lamps changed since the light probes were baked here")
-    volumes.remember(scene)
+    volumes.remember(scene, 1.0)
     world.node_tree.nodes["Background"].inputs["Strength"].default_value = 2.0
     bpy.context.view_layer.update()  # the lamps' strength drivers
     assert volumes.stale(scene).startswith("The lamps changed"), volumes.stale(scene)
-    volumes.remember(scene)
+    volumes.remember(scene, 1.0)
     cube.location.x += 0.5
     bpy.context.view_layer.update()
     assert volumes.stale(scene).startswith("The objects changed"), volumes.stale(scene)
-    volumes.remember(scene)
+    volumes.remember(scene, 1.0)
     own = bpy.data.objects.new("user's lamp", bpy.data.lights.new("user's lamp", "POINT"))
     scene.collection.objects.link(own)  # the user's own lamp bounces light too
     assert volumes.stale(scene).startswith("The lamps changed"), volumes.stale(scene)
