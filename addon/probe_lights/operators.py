@@ -286,9 +286,10 @@ class PROBE_LIGHTS_OT_eevee_settings(bpy.types.Operator):
 
 
 class PROBE_LIGHTS_OT_eevee_ray_tracing(bpy.types.Operator):
-    """Turn on EEVEE's ray tracing and add a light probe sphere around the scene: its Fast GI bounces the lamps'
-    light from what is on screen (up to Blender 5.1 closest to Cycles alone, from 5.2 with a light probe volume),
-    the sphere reflects the lit scene where the screen cannot; Restore world takes both back"""
+    """Turn on EEVEE's ray tracing and, where something in the scene reflects, add a light probe sphere around it:
+    its Fast GI bounces the lamps' light from what is on screen (up to Blender 5.1 closest to Cycles alone, from
+    5.2 with a light probe volume), the sphere reflects the lit scene where the screen cannot; Restore world takes
+    both back"""
 
     bl_idname = "probe_lights.eevee_ray_tracing"
     bl_label = "Use EEVEE ray tracing and reflections"
@@ -306,16 +307,19 @@ class PROBE_LIGHTS_OT_eevee_ray_tracing(bpy.types.Operator):
         scene = context.scene
         done = ["ray tracing on"] if self.ray_tracing and eevee_settings.use_ray_tracing(scene) else []
         nothing = ""
-        if not probe_volumes.sphere_probes(scene):
+        if probe_volumes.wants_sphere(scene):
             try:
                 probe_volumes.fit_sphere(scene)
                 done.append("a light probe sphere around the scene")
             except ValueError as e:  # no objects: nothing to reflect
                 nothing = str(e)
+        elif not probe_volumes.sphere_probes(scene):  # it would change nothing and slow the render
+            nothing = "no light probe sphere: nothing in the scene reflects"
         if done:
-            self.report({"INFO"}, "EEVEE: %s (Restore world takes it back)" % " and ".join(done))
+            self.report({"INFO"}, "EEVEE: %s (Restore world takes it back)%s" % (
+                " and ".join(done), "; " + nothing if nothing else ""))
         else:
-            self.report({"INFO"}, "EEVEE: %s" % (nothing or "ray tracing on and a light probe sphere already"))
+            self.report({"INFO"}, "EEVEE: ray tracing on; %s" % (nothing or "a light probe sphere already"))
         return {"FINISHED"}
 
 

@@ -118,6 +118,56 @@ def fit_sphere(scene):
     return obj
 
 
+# Shader nodes with no mirror-like part for a light probe sphere to give: a material of these alone (with mixes,
+# adds and node groups of them) reflects nothing sharp. Any other shader node (Principled, Glossy, Metallic, Glass,
+# Toon, Hair, an OSL script...) counts as reflecting, and so do a material without nodes and an object without a
+# material (the engines' default surface has a specular part). On the sphere over a plane, all Diffuse BSDF, the
+# sphere changed no render of the 15 probes and took each 1.3-2.2x as long (docs/results/eevee_rivals.md).
+_MATTE = {"BSDF_DIFFUSE", "BSDF_SHEEN", "BSDF_VELVET", "BSDF_TRANSLUCENT", "BSDF_TRANSPARENT", "EMISSION", "HOLDOUT",
+          "SUBSURFACE_SCATTERING", "VOLUME_ABSORPTION", "VOLUME_SCATTER", "PRINCIPLED_VOLUME", "MIX_SHADER",
+          "ADD_SHADER", "GROUP_INPUT", "REROUTE"}
+
+
+def _tree_reflects(tree, seen):
+    if tree is None or tree in seen:  # a node group already looked into reflects nothing, or the answer was given
+        return False
+    seen.add(tree)
+    for node in tree.nodes:
+        if node.type == "GROUP":
+            if _tree_reflects(node.node_tree, seen):
+                return True
+        elif node.type not in _MATTE and any(socket.type == "SHADER" for socket in node.outputs):
+            return True
+    return False
+
+
+def _reflects(material, seen):
+    if material is None or not getattr(material, "use_nodes", True) or material.node_tree is None:
+        return True
+    return _tree_reflects(material.node_tree, seen)
+
+
+def scene_reflects(scene):
+    """Whether a rendered object of the scene has a material that reflects (what a light probe sphere is for):
+    its own materials, or the view layers' material override where every view layer rendered has one."""
+    seen, materials = set(), set()
+    overrides = [layer.material_override for layer in scene.view_layers if layer.use]
+    if overrides and all(overrides):
+        materials.update(overrides)
+    else:
+        for obj in scenery(scene, rendered_only=True):
+            slots = [slot.material for slot in obj.material_slots] or [None]
+            if None in slots:
+                return True
+            materials.update(slots)
+    return any(_reflects(material, seen) for material in materials)
+
+
+def wants_sphere(scene):
+    """Whether a light probe sphere would give the scene something: none yet, and something reflects."""
+    return not sphere_probes(scene) and scene_reflects(scene)
+
+
 def remove_fitted(obj):
     data = obj.data
     bpy.data.objects.remove(obj)
@@ -133,30 +183,31 @@ def offer(scene):
     """One line on how EEVEE (Next) should bounce the baked suns' light and reflect the lit scene, or '' when it
     already does as it comes closest to Cycles in this Blender (blender_caps.eevee_bounce): up to 5.1 its ray
     tracing alone, from 5.2 a light probe volume baked with the lamps and ray tracing; in both a light probe sphere
-    around the scene (fit_sphere)."""
+    around the scene (fit_sphere) where something reflects (wants_sphere)."""
     if not eevee_settings.eevee_next(scene) or len(_suns(scene)) == 0:
         return ""
     traced, volumes = scene.eevee.use_raytracing, bool(volume_probes(scene))
-    reflected = bool(sphere_probes(scene))
+    sphere = wants_sphere(scene)
+    with_sphere = " with a light probe sphere" if sphere else ""
     version = "%d.%d" % bpy.app.version[:2]
     if blender_caps.eevee_bounce(bpy.app.version) == "ray tracing":
         if volumes and traced:
             return ("In Blender %s EEVEE's ray tracing and a light probe volume together bounce the lamps' light "
                     "farther from Cycles than either alone: turn one off" % version)
         if volumes or traced:
-            return "" if reflected else REFLECTIONS
-        return ("EEVEE bounces no light by itself and reflects none of the lamps': turn on its ray tracing with a "
-                "light probe sphere (in Blender %s closest to Cycles, no bake), or bake a light probe volume around "
-                "the scene with the lamps" % version)
+            return REFLECTIONS if sphere else ""
+        return ("EEVEE bounces no light by itself%s: turn on its ray tracing%s (in Blender %s closest to Cycles, no "
+                "bake), or bake a light probe volume around the scene with the lamps"
+                % (" and reflects none of the lamps'" if sphere else "", with_sphere, version))
     if not volumes:
         return ("EEVEE bounces no light without a light probe volume: bake one around the scene with the lamps%s"
-                % ("" if traced and reflected else
-                   ", and turn on its ray tracing with a light probe sphere (all: closest to Cycles in Blender %s)"
-                   % version))
+                % ("" if traced and not sphere else
+                   ", and turn on its ray tracing%s (together closest to Cycles in Blender %s)" % (with_sphere,
+                                                                                                 version)))
     if not traced:
         return ("With the light probe volume, EEVEE's ray tracing %s closer to Cycles in Blender %s"
-                % ("comes" if reflected else "and a light probe sphere come", version))
-    return "" if reflected else REFLECTIONS
+                % ("and a light probe sphere come" if sphere else "comes", version))
+    return REFLECTIONS if sphere else ""
 
 
 # On the scene, after the add-on's bake of the probes: what the bake saw, the lamps' and the scene's part apart;

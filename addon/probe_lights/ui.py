@@ -168,9 +168,9 @@ def _draw_probe_bake(layout, scene, width, measure, in_blenders_panel=False):
             box.operator("probe_lights.eevee_ray_tracing", icon="CHECKMARK",
                          text="Add a light probe sphere").ray_tracing = False
         elif offered:  # only EEVEE Next has an offer, and ray tracing
-            traced, reflected = scene.eevee.use_raytracing, bool(probe_volumes.sphere_probes(scene))
-            if not (traced and reflected):
-                text = "Add a light probe sphere" if traced else "Use EEVEE ray tracing" if reflected else ""
+            traced, sphere = scene.eevee.use_raytracing, probe_volumes.wants_sphere(scene)
+            if not traced or sphere:
+                text = "Add a light probe sphere" if traced else "" if sphere else "Use EEVEE ray tracing"
                 box.operator("probe_lights.eevee_ray_tracing", icon="CHECKMARK",
                              **({"text": text} if text else {}))
         box.operator("probe_lights.bake_light_probes", icon="LIGHTPROBE_VOLUME")

@@ -46,6 +46,7 @@ from addon_render_settings import (  # noqa: E402
     test_cycles_settings_offer_and_restore,
     test_eevee_shadow_pool_follows_the_scene_and_restore,
     test_eevee_ray_tracing_offered_for_the_lamps_bounce_and_restore,
+    test_a_light_probe_sphere_only_where_something_reflects,
     test_light_probes_baked_here_are_flagged_when_the_lamps_or_objects_change)
 from addon_memory import (  # noqa: E402
     test_the_read_buffer_is_reused_only_when_nobody_holds_it,
@@ -79,6 +80,7 @@ harness.run([test_register_unregister, test_real_probes_bake_with_their_energy,
              test_tolerance_never_backfires, test_cycles_settings_offer_and_restore,
              test_eevee_shadow_pool_follows_the_scene_and_restore,
              test_eevee_ray_tracing_offered_for_the_lamps_bounce_and_restore,
+             test_a_light_probe_sphere_only_where_something_reflects,
              test_light_probes_baked_here_are_flagged_when_the_lamps_or_objects_change,
              test_the_read_buffer_is_reused_only_when_nobody_holds_it,
              test_the_cores_table_buffers_are_given_back_a_minute_after_the_last_bake,

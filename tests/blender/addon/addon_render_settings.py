@@ -191,3 +191,55 @@ def test_eevee_ray_tracing_offered_for_the_lamps_bounce_and_restore():
     assert scene.eevee.use_raytracing
     scene.eevee.use_raytracing = False
     scene.render.engine = "CYCLES"
+
+
+def _material(name, *shaders):
+    """A material whose node tree holds the shader nodes `shaders` (bl_idname) and its output."""
+    material = bpy.data.materials.new(name)
+    material.use_nodes = True
+    nodes = material.node_tree.nodes
+    for node in [n for n in nodes if n.type != "OUTPUT_MATERIAL"]:
+        nodes.remove(node)
+    for shader in shaders:
+        nodes.new(shader)
+    return material
+
+
+def test_a_light_probe_sphere_only_where_something_reflects():
+    """A light probe sphere changes no render of a scene where nothing reflects sharply and slows it (the sphere
+    over a plane, all Diffuse BSDF: docs/results/eevee_rivals.md): there the panel offers EEVEE's ray tracing
+    alone and its button adds no sphere, saying why. An object without a material, a Principled BSDF, a Glossy
+    BSDF inside a node group, or a reflecting material override on the view layer each make the scene reflect."""
+    scene, _, cube, volumes = _cube_lit_by_8_suns()
+    if bpy.app.version < (4, 2, 0):
+        print("  skipped: EEVEE Legacy (Blender %s) has no ray tracing to offer" % bpy.app.version_string)
+        return
+    scene.render.engine = harness.eevee_engine()
+    scene.eevee.use_raytracing = False
+    assert volumes.scene_reflects(scene)  # no material: the engines' default surface reflects
+    matte = _material("matte", "ShaderNodeBsdfDiffuse", "ShaderNodeEmission", "ShaderNodeMixShader")
+    cube.data.materials.append(matte)
+    assert not volumes.scene_reflects(scene)
+    offer = volumes.offer(scene)
+    assert "ray tracing" in offer and "sphere" not in offer and "reflects" not in offer, offer
+    assert bpy.ops.probe_lights.eevee_ray_tracing() == {"FINISHED"}
+    assert scene.eevee.use_raytracing and not volumes.sphere_probes(scene)
+    traced_alone = harness.addon_module("blender_caps").eevee_bounce(bpy.app.version) == "ray tracing"
+    assert volumes.offer(scene) == "" if traced_alone else volumes.offer(scene).endswith("with the lamps"), \
+        volumes.offer(scene)
+    glossy = "ShaderNodeBsdfGlossy" if hasattr(bpy.types, "ShaderNodeBsdfGlossy") else "ShaderNodeBsdfAnisotropic"
+    group = bpy.data.node_groups.new("shiny", "ShaderNodeTree")
+    group.nodes.new(glossy)
+    matte.node_tree.nodes.new("ShaderNodeGroup").node_tree = group
+    assert volumes.scene_reflects(scene)
+    assert volumes.offer(scene) == volumes.REFLECTIONS if traced_alone else "sphere" in volumes.offer(scene), \
+        volumes.offer(scene)
+    layer = scene.view_layers[0]
+    layer.material_override = _material("clay", "ShaderNodeBsdfDiffuse")  # a clay render: nothing reflects
+    assert not volumes.scene_reflects(scene)
+    layer.material_override = _material("chrome", "ShaderNodeBsdfPrincipled")
+    assert volumes.scene_reflects(scene)
+    layer.material_override = None
+    assert bpy.ops.probe_lights.restore() == {"FINISHED"}
+    assert not scene.eevee.use_raytracing and not volumes.sphere_probes(scene)
+    scene.render.engine = "CYCLES"
