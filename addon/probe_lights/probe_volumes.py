@@ -122,7 +122,7 @@ def fit_sphere(scene):
 # adds and node groups of them) reflects nothing sharp. Any other shader node (Principled, Glossy, Metallic, Glass,
 # Toon, Hair, an OSL script...) counts as reflecting, and so do a material without nodes and an object without a
 # material (the engines' default surface has a specular part). On the sphere over a plane, all Diffuse BSDF, the
-# sphere changed no render of the 15 probes and took each 1.3-2.2x as long (docs/results/eevee_rivals.md).
+# sphere changed no render of the 15 probes and took each 1.4-2.2x as long (docs/results/eevee_rivals.md).
 _MATTE = {"BSDF_DIFFUSE", "BSDF_SHEEN", "BSDF_VELVET", "BSDF_TRANSLUCENT", "BSDF_TRANSPARENT", "EMISSION", "HOLDOUT",
           "SUBSURFACE_SCATTERING", "VOLUME_ABSORPTION", "VOLUME_SCATTER", "PRINCIPLED_VOLUME", "MIX_SHADER",
           "ADD_SHADER", "GROUP_INPUT", "REROUTE"}
