@@ -307,12 +307,9 @@ class PROBE_LIGHTS_OT_eevee_ray_tracing(bpy.types.Operator):
         scene = context.scene
         done = ["ray tracing on"] if self.ray_tracing and eevee_settings.use_ray_tracing(scene) else []
         nothing = ""
-        if probe_volumes.wants_sphere(scene):
-            try:
-                probe_volumes.fit_sphere(scene)
-                done.append("a light probe sphere around the scene")
-            except ValueError as e:  # no objects: nothing to reflect
-                nothing = str(e)
+        if probe_volumes.wants_sphere(scene):  # (so the scene has objects for fit_sphere)
+            probe_volumes.fit_sphere(scene)
+            done.append("a light probe sphere around the scene")
         elif not probe_volumes.sphere_probes(scene):  # it would change nothing and slow the render
             nothing = "no light probe sphere: nothing in the scene reflects"
         if done:

@@ -240,6 +240,9 @@ def test_a_light_probe_sphere_only_where_something_reflects():
     layer.material_override = _material("chrome", "ShaderNodeBsdfPrincipled")
     assert volumes.scene_reflects(scene)
     layer.material_override = None
+    cube.hide_render = True  # no object left to reflect: the click adds no sphere, and fails on nothing
+    assert bpy.ops.probe_lights.eevee_ray_tracing() == {"FINISHED"} and not volumes.sphere_probes(scene)
+    cube.hide_render = False
     assert bpy.ops.probe_lights.restore() == {"FINISHED"}
     assert not scene.eevee.use_raytracing and not volumes.sphere_probes(scene)
     scene.render.engine = "CYCLES"
